@@ -1,0 +1,42 @@
+#include "cli.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include <fmt/core.h>
+
+namespace iris::app {
+
+int run(CLI::App& app, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+        return 0;
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        fmt::print(stderr, "{}: error: {} (see --help)\n", app.get_name(), e.what());
+        return exit_usage;
+    } catch (const usage_error& e) {
+        fmt::print(stderr, "{}: error: {}\n", app.get_name(), e.what());
+        return exit_usage;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "{}: error: {}\n", app.get_name(), e.what());
+        return exit_failure;
+    }
+}
+
+double parse_number(const std::string& text, const std::string& what) {
+    errno = 0;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+        throw usage_error(fmt::format("{} must be a finite number, got '{}'", what, text));
+    return v;
+}
+
+}  // namespace iris::app

@@ -1,0 +1,12 @@
+#pragma once
+/// \file
+/// \brief The subcommand families of iris-spectrum, each registered by one function.
+
+#include <CLI/CLI.hpp>
+
+namespace iris::app {
+
+/// \brief `list`, `xyz`, `ior`, `plot`: the spectra and glasses compiled into iris.
+void add_spectrum_commands(CLI::App& app);
+
+}  // namespace iris::app

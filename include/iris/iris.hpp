@@ -1,0 +1,15 @@
+#pragma once
+/// \file
+/// \brief Umbrella header: the whole header-only core of iris.
+
+#include "iris/version.hpp"
+
+#include "iris/image.hpp"
+
+#include "iris/spectrum/blackbody.hpp"
+#include "iris/spectrum/color.hpp"
+#include "iris/spectrum/ior.hpp"
+#include "iris/spectrum/named.hpp"
+#include "iris/spectrum/sampled.hpp"
+#include "iris/spectrum/spectrum.hpp"
+#include "iris/spectrum/tabulated.hpp"

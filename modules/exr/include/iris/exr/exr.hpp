@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// \brief iris::exr — OpenEXR images with string metadata, PNG previews, atomic writes.
+///
+/// Every writer here writes a temporary file beside the target and renames it over the
+/// target, so a reader (tev, a script, an interrupted render) never sees a half-written
+/// image. All OpenEXR/stb failures leave this module as `iris::exr::error`.
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "iris/image.hpp"
+
+namespace iris::exr {
+
+/// \brief Any failure to read or write an image (message names the file).
+class error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// \brief Header attributes stored as EXR string attributes (e.g. "iris:spp" → "64").
+using metadata = std::map<std::string, std::string>;
+
+enum class pixel_type { half, float32 };
+
+/// \brief Write linear RGB as an EXR (channels R, G, B), atomically.
+void write(const std::filesystem::path& path, const image& img, const metadata& meta = {},
+           pixel_type type = pixel_type::float32);
+
+/// \brief An EXR's RGB channels (as float) and its string attributes.
+struct loaded {
+    iris::image pixels;
+    metadata meta;
+};
+
+/// \brief Read an EXR with R, G and B channels. Missing channels are an error, not zeros.
+loaded read(const std::filesystem::path& path);
+
+/// \brief Write an 8-bit sRGB-encoded PNG preview of linear RGB, scaled by 2^exposure, atomically.
+void write_png(const std::filesystem::path& path, const image& img, double exposure = 0.0);
+
+/// \brief Call `write_to(tmp)` for a temporary path beside `target`, then rename it onto
+/// `target`. The temporary is removed if `write_to` throws. \throws error
+void write_atomically(const std::filesystem::path& target,
+                      const std::function<void(const std::filesystem::path&)>& write_to);
+
+}  // namespace iris::exr
