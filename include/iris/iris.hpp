@@ -13,3 +13,13 @@
 #include "iris/spectrum/sampled.hpp"
 #include "iris/spectrum/spectrum.hpp"
 #include "iris/spectrum/tabulated.hpp"
+
+#include "iris/render/bsdf.hpp"
+#include "iris/render/camera.hpp"
+#include "iris/render/film.hpp"
+#include "iris/render/frame.hpp"
+#include "iris/render/integrator.hpp"
+#include "iris/render/intersector.hpp"
+#include "iris/render/lights.hpp"
+#include "iris/render/random.hpp"
+#include "iris/render/scene.hpp"

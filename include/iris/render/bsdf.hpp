@@ -1,0 +1,330 @@
+#pragma once
+/// \file
+/// \brief Spectral BSDFs of the scene's materials, evaluated at N wavelengths at once.
+///
+/// The same templates serve the C hero-rotated wavelengths (`N = C`) and the bins of the
+/// bias-propagation term (`N = bins`), so the B term is one vectorised call per vertex,
+/// not a loop of scalar material calls. Directions are world-space unit vectors pointing
+/// away from the surface; `n` is the (outward) geometric normal.
+///
+/// Sampling is driven by the hero wavelength λ₀ alone. A sample reports, for every
+/// wavelength λ_k, the BSDF value f(λ_k)·|cos θᵢ| along the hero's direction and the pdf
+/// p(ωᵢ | λ_k) that λ_k would have had of producing that same direction — the inputs of
+/// the HWSS MIS weight (SPEC §2). For delta lobes both are discrete weights; at a
+/// refraction through a dispersive interface the direction depends on λ, so p(ωᵢ|λ_k) = 0
+/// for k ≠ 0 (secondary wavelengths terminate, SPEC §2) and f(λ_k) = 0 with it.
+/// Reflection off a dispersive interface keeps the secondaries: its direction does not
+/// depend on λ.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <optional>
+#include <variant>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "iris/render/frame.hpp"
+#include "iris/render/scene.hpp"
+#include "iris/spectrum/sampled.hpp"
+#include "iris/spectrum/spectrum.hpp"
+
+namespace iris {
+
+/// \brief Which lobe a sample took; the B term follows the hero's choice at delta events.
+enum class lobe : unsigned char { diffuse, reflection, transmission };
+
+template <std::size_t N>
+struct bsdf_sample {
+    glm::vec3 wi{0.0f};
+    sampled_spectrum<N> f_cos;  ///< f(ωo, ωi, λ_k)·|cos θi|, or the discrete weight of a delta lobe
+    sampled_spectrum<N> pdf;    ///< p(ωi | ωo, λ_k) (solid angle), or a discrete probability
+    lobe kind = lobe::diffuse;
+    bool delta = false;
+};
+
+namespace detail {
+
+inline constexpr float inv_pi = std::numbers::inv_pi_v<float>;
+
+/// \brief Unpolarised Fresnel reflectance of a dielectric interface. `cos_i` is measured
+/// on the side of the incident direction's normal; eta = n_inside / n_outside.
+inline float fresnel_dielectric(float cos_i, float eta) noexcept {
+    cos_i = std::clamp(cos_i, -1.0f, 1.0f);
+    if (cos_i < 0.0f) {
+        eta = 1.0f / eta;
+        cos_i = -cos_i;
+    }
+    const float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0f) return 1.0f;  // total internal reflection
+    const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
+    const float r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5f * (r_parl * r_parl + r_perp * r_perp);
+}
+
+/// \brief Refract `wi` (pointing away) through a surface with normal `n`; eta = n_inside /
+/// n_outside with `n` pointing outside. Returns the transmitted direction and the relative
+/// eta it saw (η_t/η_i), or nothing on total internal reflection.
+struct refraction {
+    glm::vec3 wt;
+    float eta;
+};
+inline std::optional<refraction> refract(const glm::vec3& wi, glm::vec3 n, float eta) noexcept {
+    float cos_i = glm::dot(n, wi);
+    if (cos_i < 0.0f) {
+        eta = 1.0f / eta;
+        cos_i = -cos_i;
+        n = -n;
+    }
+    const float sin2_i = std::max(0.0f, 1.0f - cos_i * cos_i);
+    const float sin2_t = sin2_i / (eta * eta);
+    if (sin2_t >= 1.0f) return std::nullopt;
+    const float cos_t = std::sqrt(1.0f - sin2_t);
+    return refraction{glm::normalize(-wi / eta + (cos_i / eta - cos_t) * n), eta};
+}
+
+/// \brief Isotropic GGX (Trowbridge–Reitz) in the local frame (n = +z).
+struct ggx {
+    float alpha;
+
+    float d(const glm::vec3& wm) const noexcept {
+        const float c2 = wm.z * wm.z;
+        if (c2 <= 0.0f) return 0.0f;
+        const float tan2 = std::max(0.0f, 1.0f - c2) / c2;
+        const float e = 1.0f + tan2 / (alpha * alpha);
+        return 1.0f / (std::numbers::pi_v<float> * alpha * alpha * c2 * c2 * e * e);
+    }
+    float lambda(const glm::vec3& w) const noexcept {
+        const float c2 = w.z * w.z;
+        if (c2 <= 0.0f) return 0.0f;
+        const float tan2 = std::max(0.0f, 1.0f - c2) / c2;
+        return 0.5f * (std::sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
+    }
+    float g1(const glm::vec3& w) const noexcept { return 1.0f / (1.0f + lambda(w)); }
+    float g(const glm::vec3& wo, const glm::vec3& wi) const noexcept { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
+    /// \brief Density of visible normals D_ωo(ωm) (Heitz 2018).
+    float d_visible(const glm::vec3& wo, const glm::vec3& wm) const noexcept {
+        return wo.z == 0.0f ? 0.0f : g1(wo) / std::fabs(wo.z) * d(wm) * std::fabs(glm::dot(wo, wm));
+    }
+    /// \brief Sample a visible normal (Heitz 2018, "Sampling the GGX distribution of visible normals").
+    glm::vec3 sample_visible(glm::vec3 wo, glm::vec2 u) const noexcept {
+        glm::vec3 wh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
+        if (wh.z < 0.0f) wh = -wh;
+        const glm::vec3 t1 = wh.z < 0.99999f ? glm::normalize(glm::cross(glm::vec3(0, 0, 1), wh)) : glm::vec3(1, 0, 0);
+        const glm::vec3 t2 = glm::cross(wh, t1);
+        const float r = std::sqrt(u.x);
+        const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
+        float px = r * std::cos(phi);
+        float py = r * std::sin(phi);
+        const float h = std::sqrt(std::max(0.0f, 1.0f - px * px));
+        py = (1.0f - (1.0f + wh.z) / 2.0f) * h + (1.0f + wh.z) / 2.0f * py;
+        const float pz = std::sqrt(std::max(0.0f, 1.0f - px * px - py * py));
+        const glm::vec3 nh = px * t1 + py * t2 + pz * wh;
+        return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(1e-6f, nh.z)));
+    }
+};
+
+/// \brief f·|cos θi| and pdf of the rough dielectric for one wavelength (local frame),
+/// with the generalised half vector of Walter et al. 2007 (pbrt-v4's formulation).
+struct rough_value {
+    float f_cos = 0.0f;
+    float pdf = 0.0f;
+};
+inline rough_value rough_dielectric(const ggx& m, const glm::vec3& wo, const glm::vec3& wi, float eta) noexcept {
+    const float cos_o = wo.z, cos_i = wi.z;
+    if (cos_o == 0.0f || cos_i == 0.0f) return {};
+    const bool reflect = cos_i * cos_o > 0.0f;
+    const float etap = reflect ? 1.0f : (cos_o > 0.0f ? eta : 1.0f / eta);
+    glm::vec3 wm = wi * etap + wo;
+    const float len2 = glm::dot(wm, wm);
+    if (!(len2 > 0.0f)) return {};
+    wm = wm / std::sqrt(len2);
+    if (wm.z < 0.0f) wm = -wm;
+    if (glm::dot(wm, wi) * cos_i < 0.0f || glm::dot(wm, wo) * cos_o < 0.0f) return {};  // back-facing microfacet
+    const float fr = fresnel_dielectric(glm::dot(wo, wm), eta);
+    if (reflect) {
+        const float f = m.d(wm) * m.g(wo, wi) * fr / std::fabs(4.0f * cos_i * cos_o);
+        const float pdf = m.d_visible(wo, wm) / (4.0f * std::fabs(glm::dot(wo, wm))) * fr;
+        return {f * std::fabs(cos_i), pdf};
+    }
+    const float s = glm::dot(wi, wm) + glm::dot(wo, wm) / etap;
+    const float denom = s * s * cos_i * cos_o;
+    if (denom == 0.0f) return {};
+    float ft = m.d(wm) * (1.0f - fr) * m.g(wo, wi) * std::fabs(glm::dot(wi, wm) * glm::dot(wo, wm) / denom);
+    ft /= etap * etap;  // radiance is compressed/expanded across the interface
+    const float dwm_dwi = std::fabs(glm::dot(wi, wm)) / (s * s);
+    const float pdf = m.d_visible(wo, wm) * dwm_dwi * (1.0f - fr);
+    return {ft * std::fabs(cos_i), pdf};
+}
+
+/// \brief Below this GGX α a rough dielectric is treated as smooth (numerically a delta).
+inline constexpr float smooth_alpha = 1e-3f;
+
+template <std::size_t N>
+sampled_spectrum<N> etas(const ior_model& ior, const sampled_wavelengths<N>& wl) noexcept {
+    sampled_spectrum<N> e;
+    for (std::size_t k = 0; k < N; ++k) e[k] = static_cast<float>(refractive_index(ior, static_cast<double>(wl[k])));
+    return e;
+}
+
+}  // namespace detail
+
+/// \brief Is this material a delta BSDF (mirror, smooth glass)?
+inline bool is_delta(const material_desc& m) noexcept {
+    if (std::holds_alternative<material::conductor>(m)) return true;
+    if (const auto* d = std::get_if<material::dielectric>(&m)) return d->roughness < detail::smooth_alpha;
+    return false;
+}
+
+/// \brief f(ωo, ωi, λ_k)·|cos θi| for non-delta materials (0 for delta ones).
+template <std::size_t N>
+sampled_spectrum<N> bsdf_eval(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
+                              const sampled_wavelengths<N>& wl) noexcept {
+    if (const auto* d = std::get_if<material::diffuse>(&mat)) {
+        const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
+        if (co * ci <= 0.0f) return {};  // two-sided Lambertian: same side only
+        return sample(d->reflectance, wl) * (std::fabs(ci) * detail::inv_pi);
+    }
+    if (const auto* g = std::get_if<material::dielectric>(&mat); g && g->roughness >= detail::smooth_alpha) {
+        const frame fr = frame::from_normal(n);
+        const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
+        const detail::ggx m{g->roughness};
+        const auto eta = detail::etas(g->ior, wl);
+        sampled_spectrum<N> out;
+        for (std::size_t k = 0; k < N; ++k) out[k] = detail::rough_dielectric(m, lo, li, eta[k]).f_cos;
+        return out;
+    }
+    return {};
+}
+
+/// \brief p(ωi | ωo, λ_k) in solid angle for non-delta materials (0 for delta ones).
+template <std::size_t N>
+sampled_spectrum<N> bsdf_pdf(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
+                             const sampled_wavelengths<N>& wl) noexcept {
+    if (std::holds_alternative<material::diffuse>(mat)) {
+        const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
+        return sampled_spectrum<N>(co * ci > 0.0f ? std::fabs(ci) * detail::inv_pi : 0.0f);
+    }
+    if (const auto* g = std::get_if<material::dielectric>(&mat); g && g->roughness >= detail::smooth_alpha) {
+        const frame fr = frame::from_normal(n);
+        const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
+        const detail::ggx m{g->roughness};
+        const auto eta = detail::etas(g->ior, wl);
+        sampled_spectrum<N> out;
+        for (std::size_t k = 0; k < N; ++k) out[k] = detail::rough_dielectric(m, lo, li, eta[k]).pdf;
+        return out;
+    }
+    return {};
+}
+
+/// \brief Sample a direction with the hero wavelength wl[0]; report f·|cos| and pdf for
+/// every wavelength along it. `u_lobe` picks reflection/transmission, `u` the direction.
+/// Returns nothing when the sample is absorbed or degenerate.
+template <std::size_t N>
+std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
+                                               const sampled_wavelengths<N>& wl, float u_lobe, glm::vec2 u) noexcept {
+    bsdf_sample<N> s;
+    if (const auto* d = std::get_if<material::diffuse>(&mat)) {
+        const float co = glm::dot(n, wo);
+        if (co == 0.0f) return std::nullopt;
+        // cosine-weighted hemisphere on wo's side (Malley: concentric disk → lift)
+        const float r = std::sqrt(u.x), phi = 2.0f * std::numbers::pi_v<float> * u.y;
+        const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u.x));
+        const frame fr = frame::from_normal(co > 0.0f ? n : -n);
+        s.wi = glm::normalize(fr.to_world({x, y, z}));
+        if (!(z > 0.0f)) return std::nullopt;
+        s.f_cos = sample(d->reflectance, wl) * (z * detail::inv_pi);
+        s.pdf = sampled_spectrum<N>(z * detail::inv_pi);
+        s.kind = lobe::diffuse;
+        return s;
+    }
+    if (const auto* c = std::get_if<material::conductor>(&mat)) {
+        s.wi = reflect_about(wo, n);
+        s.f_cos = sample(c->reflectance, wl);
+        s.pdf = sampled_spectrum<N>(1.0f);
+        s.kind = lobe::reflection;
+        s.delta = true;
+        return s;
+    }
+    const auto& g = std::get<material::dielectric>(mat);
+    const auto eta = detail::etas(g.ior, wl);
+    const bool dispersive = is_dispersive(g.ior);
+    if (g.roughness < detail::smooth_alpha) {
+        const float co = glm::dot(n, wo);
+        sampled_spectrum<N> fr;
+        for (std::size_t k = 0; k < N; ++k) fr[k] = detail::fresnel_dielectric(co, eta[k]);
+        s.delta = true;
+        if (u_lobe < fr[0]) {
+            s.wi = reflect_about(wo, n);
+            s.kind = lobe::reflection;
+            s.f_cos = fr;
+            s.pdf = fr;  // had λ_k been the hero, it would have reflected with probability F(λ_k)
+            return s;
+        }
+        const auto t = detail::refract(wo, n, eta[0]);
+        if (!t) return std::nullopt;  // unreachable: TIR means F = 1
+        s.wi = t->wt;
+        s.kind = lobe::transmission;
+        for (std::size_t k = 0; k < N; ++k) {
+            if (dispersive && k > 0) continue;  // λ-dependent direction: secondaries terminate
+            const float e = co > 0.0f ? eta[k] : 1.0f / eta[k];
+            s.f_cos[k] = (1.0f - fr[k]) / (e * e);
+            s.pdf[k] = 1.0f - fr[k];
+        }
+        return s;
+    }
+    // rough dielectric: sample a visible microfacet normal with the hero's eta
+    const frame fr = frame::from_normal(n);
+    const glm::vec3 lo = fr.to_local(wo);
+    if (lo.z == 0.0f) return std::nullopt;
+    const detail::ggx m{g.roughness};
+    const glm::vec3 wm = m.sample_visible(lo, u);
+    const float f0 = detail::fresnel_dielectric(glm::dot(lo, wm), eta[0]);
+    glm::vec3 li;
+    if (u_lobe < f0) {
+        li = reflect_about(lo, wm);
+        if (li.z * lo.z <= 0.0f) return std::nullopt;
+        s.kind = lobe::reflection;
+    } else {
+        const auto t = detail::refract(lo, wm, eta[0]);
+        if (!t || t->wt.z * lo.z >= 0.0f || t->wt.z == 0.0f) return std::nullopt;
+        li = t->wt;
+        s.kind = lobe::transmission;
+    }
+    s.wi = fr.to_world(li);
+    for (std::size_t k = 0; k < N; ++k) {
+        const auto v = detail::rough_dielectric(m, lo, li, eta[k]);
+        s.f_cos[k] = v.f_cos;
+        s.pdf[k] = v.pdf;
+    }
+    if (!(s.pdf[0] > 0.0f)) return std::nullopt;
+    (void)dispersive;  // rough events keep every wavelength: all p(ωi|λ_k) are finite (SPEC §2)
+    return s;
+}
+
+/// \brief The weight of a delta event at other wavelengths (the B-term bins) when they
+/// follow the hero's lobe and direction: F(λ_b) for reflection, (1 − F(λ_b))/η_b² for
+/// transmission. Treating λ_b as if it took the hero's refracted direction is the
+/// method's (only) bias (SPEC §3).
+template <std::size_t M>
+sampled_spectrum<M> delta_weight(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, lobe kind,
+                                 const sampled_wavelengths<M>& wl) noexcept {
+    if (const auto* c = std::get_if<material::conductor>(&mat)) return sample(c->reflectance, wl);
+    const auto* g = std::get_if<material::dielectric>(&mat);
+    if (!g) return {};
+    const float co = glm::dot(n, wo);
+    const auto eta = detail::etas(g->ior, wl);
+    sampled_spectrum<M> w;
+    for (std::size_t k = 0; k < M; ++k) {
+        const float f = detail::fresnel_dielectric(co, eta[k]);
+        const float e = co > 0.0f ? eta[k] : 1.0f / eta[k];
+        w[k] = kind == lobe::reflection ? f : (1.0f - f) / (e * e);
+    }
+    return w;
+}
+
+}  // namespace iris

@@ -1,0 +1,254 @@
+#pragma once
+/// \file
+/// \brief `path_integrator<Config, Features>`: unidirectional spectral path tracing with
+/// next-event estimation, MIS between BSDF and light sampling, Russian roulette, C
+/// hero-rotated wavelengths with the corrected HWSS MIS weight (SPEC §2), and the
+/// config's bias policy (SPEC §3).
+///
+/// Estimator per sample (SPEC): F = F_R (÷ Z_α for ScaledPdf) + B (PropagateUnused).
+///   F_R = Σ_j r_α(λ_j) f(x̄, λ_j) / (p_α(λ_j) Σ_k p(x̄ | λ_k)),
+/// where p(x̄ | λ_k) sums over the two strategies that can make the last vertex (BSDF
+/// sampling and light sampling): the balance heuristic over C wavelengths × 2 strategies.
+/// It is tracked in ratio form, as pbrt-v4 does: β_k = f(λ_k)/p(x̄|λ₀) and
+/// ρ_k = p(x̄|λ_k)/p(x̄|λ₀), so f_j / Σ_k p_k = β_j / Σ_k ρ_k.
+///   B = Σ_b (1 − r_α(λ_b)) f_h(x̄, λ_b) Δλ / p(x̄ | λ₀)
+/// with the hero's own BSDF/light balance weights; λ_b = λmin + (b + u)Δλ (one jitter u
+/// per sample shared by all bins, so each λ_b is uniform in its bin).
+///
+/// `Dispersive = false` is the instantiation for scenes without λ-dependent directions:
+/// there every p(x̄|λ_k) equals the hero's, ρ ≡ 1, so no per-wavelength pdf is evaluated
+/// or tracked (the feature summary picks it; docs/performance.md measures what it saves).
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "iris/render/bsdf.hpp"
+#include "iris/render/frame.hpp"
+#include "iris/render/intersector.hpp"
+#include "iris/render/lights.hpp"
+#include "iris/render/random.hpp"
+#include "iris/render/scene.hpp"
+#include "iris/spectrum/color.hpp"
+#include "iris/spectrum/sampled.hpp"
+
+namespace iris {
+
+/// \brief One sample's pixel estimate and the number of rays it traced.
+struct path_sample {
+    xyz value;
+    std::uint32_t rays = 0;
+};
+
+/// \brief Settings of the path tracer that are not part of the sampling policy.
+struct path_settings {
+    int max_depth = 32;      ///< scattering events; emission is still collected at the last vertex
+    int rr_start_depth = 3;  ///< Russian roulette from this depth on
+};
+
+template <class Config, bool Dispersive, std::size_t Bins = 80>
+class path_integrator {
+public:
+    static constexpr std::size_t C = Config::wavelength_count;
+    static constexpr bool propagates = Config::bias_type::propagates;
+    static constexpr bool scales_pdf = Config::bias_type::scales_pdf;
+    static constexpr bool dispersive = Dispersive;
+    static constexpr std::size_t bins = Bins;
+
+    path_integrator(const scene_desc& scene, const light_sampler& lights, path_settings settings = {}) noexcept
+        : m_scene(scene), m_lights(lights), m_settings(settings) {}
+
+    /// \brief Trace one path from `origin` along unit `dir`. `dist` is the restricted
+    /// distribution at this sample's α (its `restriction`, `normalisation` and
+    /// `sample_wavelengths<C>`); `alpha < 1` switches the B term on for PropagateUnused.
+    template <Intersector Tracer, class Distribution>
+    path_sample trace(const Tracer& tracer, glm::vec3 origin, glm::vec3 dir, const Distribution& dist, float alpha,
+                      sample_stream& rng) const noexcept {
+        path_sample out;
+        const sampled_wavelengths<C> wl = dist.template sample_wavelengths<C>(rng.next());
+
+        // B-term bins (only while the restriction is not yet relaxed)
+        const bool use_bins = propagates && alpha < 1.0f;
+        const float lmin = m_scene.lambda_min;
+        const float bin_width = (m_scene.lambda_max - m_scene.lambda_min) / static_cast<float>(Bins);
+        sampled_wavelengths<Bins> wb;
+        if (use_bins) {
+            const float jitter = rng.next();
+            for (std::size_t b = 0; b < Bins; ++b) {
+                wb.lambda(b) = lmin + (static_cast<float>(b) + jitter) * bin_width;
+                wb.pdf(b) = 1.0f;
+            }
+        }
+
+        sampled_spectrum<C> beta(1.0f), rho(1.0f), rho_before(1.0f), lc;
+        sampled_spectrum<Bins> tb, lb;
+        if (use_bins) tb = sampled_spectrum<Bins>(1.0f);
+        bool prev_delta = true;  // the camera ray: no light-sampling strategy competes
+        float prev_pdf = 0.0f;
+
+        for (int depth = 0;; ++depth) {
+            const auto hit = tracer.intersect(origin, dir, std::numeric_limits<float>::infinity());
+            ++out.rays;
+            if (!hit) {
+                if (m_scene.environment) {  // not light-sampled: BSDF sampling is its only strategy
+                    const float denom = sum_rho(rho);
+                    lc += beta * sample(m_scene.environment->radiance, wl) / denom;
+                    if (use_bins) lb += tb * sample(m_scene.environment->radiance, wb);
+                }
+                break;
+            }
+            const shape_desc& shape = m_scene.shapes[hit->shape];
+            const auto& tri = shape.mesh.triangles[hit->prim];
+            const glm::vec3 p = origin + hit->t * dir;
+            const glm::vec3 wo = -dir;
+            glm::vec3 ng = glm::cross(shape.mesh.positions[tri[1]] - shape.mesh.positions[tri[0]],
+                                      shape.mesh.positions[tri[2]] - shape.mesh.positions[tri[0]]);
+            const float ng_len = glm::length(ng);
+            if (!(ng_len > 0.0f)) break;  // degenerate triangle
+            ng /= ng_len;
+
+            // emission found by BSDF sampling (or seen directly)
+            if (shape.emitter) {
+                const emitter_desc& em = m_scene.emitters[*shape.emitter];
+                const float cos_l = glm::dot(ng, wo);
+                if (em.two_sided ? cos_l != 0.0f : cos_l > 0.0f) {
+                    float denom, w_hero = 1.0f;
+                    if (prev_delta) {
+                        denom = sum_rho(rho);
+                    } else {
+                        const float pl = m_lights.pdf_area(hit->shape, hit->prim) * hit->t * hit->t / std::fabs(cos_l);
+                        denom = sum_rho(rho) + (pl / prev_pdf) * sum_rho(rho_before);
+                        w_hero = prev_pdf / (prev_pdf + pl);
+                    }
+                    lc += beta * sample(em.radiance, wl) / denom;
+                    if (use_bins) lb += tb * sample(em.radiance, wb) * w_hero;
+                }
+            }
+            if (depth >= m_settings.max_depth) break;
+            const material_desc& mat = m_scene.materials[shape.material];
+            const bool delta = is_delta(mat);
+
+            // next-event estimation
+            if (!delta && !m_lights.empty()) {
+                const auto ls = m_lights.sample(rng.next(), rng.next2());
+                if (ls) {
+                    const glm::vec3 to_light = ls->point - p;
+                    const float d2 = glm::dot(to_light, to_light);
+                    const float d = std::sqrt(d2);
+                    const glm::vec3 wi = to_light / d;
+                    const float cos_l = -glm::dot(ls->normal, wi);
+                    const emitter_desc& em = m_scene.emitters[ls->emitter];
+                    const bool emits = em.two_sided ? cos_l != 0.0f : cos_l > 0.0f;
+                    if (emits && d > 0.0f) {
+                        const sampled_spectrum<C> f = bsdf_eval(mat, ng, wo, wi, wl);
+                        if (!f.is_zero()) {
+                            ++out.rays;
+                            const glm::vec3 o2 = offset_ray_origin(p, ng, wi);
+                            if (!tracer.occluded(o2, wi, glm::length(ls->point - o2) * (1.0f - 1e-4f))) {
+                                const float pl = ls->pdf_area * d2 / std::fabs(cos_l);
+                                const sampled_spectrum<C> pb = bsdf_pdfs(mat, ng, wo, wi, wl);
+                                float denom = 0.0f;
+                                for (std::size_t k = 0; k < C; ++k) denom += rho_k(rho, k) * (1.0f + pb[k] / pl);
+                                lc += beta * f * sample(em.radiance, wl) / (pl * denom);
+                                if (use_bins) {
+                                    const float w_hero = pl / (pl + pb[0]);
+                                    lb += tb * bsdf_eval(mat, ng, wo, wi, wb) * sample(em.radiance, wb) * (w_hero / pl);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+
+            // BSDF sampling with the hero wavelength
+            const float u_lobe = rng.next();
+            const auto bs = bsdf_sample_hero(mat, ng, wo, wl, u_lobe, rng.next2());
+            if (!bs) break;
+            const float p0 = bs->pdf[0];
+            if (!(p0 > 0.0f)) break;
+            if (use_bins) {
+                if (bs->delta)
+                    tb *= delta_weight(mat, ng, wo, bs->kind, wb) / p0;
+                else
+                    tb *= bsdf_eval(mat, ng, wo, bs->wi, wb) / p0;
+            }
+            beta *= bs->f_cos / p0;
+            if constexpr (Dispersive) {
+                rho_before = rho;
+                rho *= bs->pdf / p0;
+            }
+            prev_delta = bs->delta;
+            prev_pdf = p0;
+
+            // Russian roulette on the largest remaining weight (same for every λ: MIS ratios unchanged)
+            if (depth + 1 >= m_settings.rr_start_depth) {
+                float m = beta.max_value();
+                if (use_bins) m = std::fmax(m, tb.max_value());
+                const float survive = std::fmin(1.0f, m);
+                if (!(survive > 0.0f) || rng.next() >= survive) break;
+                beta /= survive;
+                if (use_bins) tb /= survive;
+            }
+            origin = offset_ray_origin(p, ng, bs->wi);
+            dir = bs->wi;
+        }
+
+        // F_R: Σ_j r_α(λ_j)/p_α(λ_j) · L_j · cmf(λ_j)
+        xyz v;
+        const float z = scales_pdf ? dist.normalisation() : 1.0f;
+        for (std::size_t j = 0; j < C; ++j) {
+            if (!(wl.pdf(j) > 0.0f) || lc[j] == 0.0f) continue;
+            const double w = static_cast<double>(dist.restriction(wl[j])) / (static_cast<double>(wl.pdf(j)) * z);
+            add_cmf(v, w * static_cast<double>(lc[j]), wl[j]);
+        }
+        if (use_bins) {
+            for (std::size_t b = 0; b < Bins; ++b) {
+                if (lb[b] == 0.0f) continue;
+                const double keep = 1.0 - static_cast<double>(dist.restriction(wb[b]));
+                add_cmf(v, keep * static_cast<double>(bin_width) * static_cast<double>(lb[b]), wb[b]);
+            }
+        }
+        constexpr double k = 1.0 / cie::y_integral;
+        out.value = {v.x * k, v.y * k, v.z * k};
+        return out;
+    }
+
+private:
+    static float rho_k(const sampled_spectrum<C>& rho, std::size_t k) noexcept {
+        if constexpr (Dispersive) return rho[k];
+        else {
+            (void)rho;
+            (void)k;
+            return 1.0f;
+        }
+    }
+    static float sum_rho(const sampled_spectrum<C>& rho) noexcept {
+        if constexpr (Dispersive) return rho.sum();
+        else {
+            (void)rho;
+            return static_cast<float>(C);
+        }
+    }
+    /// \brief Per-wavelength BSDF pdfs; without dispersion all equal the hero's.
+    static sampled_spectrum<C> bsdf_pdfs(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
+                                         const glm::vec3& wi, const sampled_wavelengths<C>& wl) noexcept {
+        if constexpr (Dispersive) return bsdf_pdf(mat, n, wo, wi, wl);
+        else return sampled_spectrum<C>(bsdf_pdf(mat, n, wo, wi, sampled_wavelengths<1>({wl[0]}, {1.0f}))[0]);
+    }
+    static void add_cmf(xyz& v, double w, float lambda) noexcept {
+        const double l = static_cast<double>(lambda);
+        v.x += w * cie::x_bar(l);
+        v.y += w * cie::y_bar(l);
+        v.z += w * cie::z_bar(l);
+    }
+
+    const scene_desc& m_scene;
+    const light_sampler& m_lights;
+    path_settings m_settings;
+};
+
+}  // namespace iris

@@ -1,0 +1,106 @@
+// The integrator against closed forms, with a minimal stand-in sampling policy (uniform
+// wavelengths, no restriction) so that it is tested independently of the policies; the
+// preset-level tests (every preset on the furnace, U1–U3) live with the renderer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <iris/render/camera.hpp>
+#include <iris/render/integrator.hpp>
+
+#include "test_scenes.hpp"
+
+namespace {
+
+/// \brief Uniform wavelengths on [lo, hi], hero-rotated, r ≡ 1.
+struct uniform_distribution {
+    float lo = 380.0f, hi = 780.0f;
+    float restriction(float) const noexcept { return 1.0f; }
+    float normalisation() const noexcept { return 1.0f; }
+    template <std::size_t C>
+    iris::sampled_wavelengths<C> sample_wavelengths(float u) const noexcept {
+        iris::sampled_wavelengths<C> wl;
+        for (std::size_t j = 0; j < C; ++j) {
+            float uj = u + static_cast<float>(j) / static_cast<float>(C);
+            uj -= std::floor(uj);
+            wl.lambda(j) = lo + uj * (hi - lo);
+            wl.pdf(j) = 1.0f / (hi - lo);
+        }
+        return wl;
+    }
+};
+
+template <std::size_t C, bool Propagates = false>
+struct test_config {
+    static constexpr std::size_t wavelength_count = C;
+    struct bias_type {
+        static constexpr bool propagates = Propagates;
+        static constexpr bool scales_pdf = false;
+    };
+};
+
+struct estimate {
+    double mean, stderr_;
+};
+
+/// \brief Mean of the Y estimates of `n` independent samples of one pixel.
+template <class Integrator>
+estimate furnace_y(const Integrator& integ, const iris::scene_desc& s, int n, float alpha = 1.0f) {
+    const iris::test::brute_force_intersector tracer(s);
+    const iris::camera_rays cam(s.camera, s.camera.width, s.camera.height);
+    const uniform_distribution dist;
+    double sum = 0.0, sum2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+        iris::sample_stream rng(42, 7, static_cast<std::uint64_t>(i));
+        const auto d = cam.direction(1, 2, rng.next2());
+        const double y = integ.trace(tracer, cam.origin(), d, dist, alpha, rng).value.y;
+        sum += y;
+        sum2 += y * y;
+    }
+    const double mean = sum / n;
+    const double var = (sum2 / n - mean * mean) * n / (n - 1);
+    return {mean, std::sqrt(var / n)};
+}
+
+// 99.9 % two-sided normal quantile: each furnace test fails by chance with p = 0.001.
+constexpr double z999 = 3.2905;
+
+TEST(Integrator, WhiteFurnaceReachesOneOverOneMinusAlbedo) {
+    const auto s = iris::test::furnace(0.8);
+    const iris::light_sampler lights(s);
+    const iris::path_integrator<test_config<4>, false> integ(s, lights, {1000, 3});
+    const auto e = furnace_y(integ, s, 40000);
+    EXPECT_NEAR(e.mean, 5.0, z999 * e.stderr_) << "stderr " << e.stderr_;
+    EXPECT_LT(e.stderr_, 0.25 / (2.0 * z999));  // power: a 5 % error (0.25) sits ≥ 2 bounds away
+}
+
+TEST(Integrator, DispersiveInstantiationAgreesOnNonDispersiveScene) {
+    const auto s = iris::test::furnace(0.5);
+    const iris::light_sampler lights(s);
+    const iris::path_integrator<test_config<4>, true> integ(s, lights, {1000, 3});
+    const auto e = furnace_y(integ, s, 40000);
+    EXPECT_NEAR(e.mean, 2.0, z999 * e.stderr_);
+}
+
+TEST(Integrator, SingleWavelengthAndWideC) {
+    const auto s = iris::test::furnace(0.5);
+    const iris::light_sampler lights(s);
+    const iris::path_integrator<test_config<1>, false> c1(s, lights, {1000, 3});
+    const iris::path_integrator<test_config<32>, true> c32(s, lights, {1000, 3});
+    const auto e1 = furnace_y(c1, s, 40000);
+    const auto e32 = furnace_y(c32, s, 10000);
+    EXPECT_NEAR(e1.mean, 2.0, z999 * e1.stderr_);
+    EXPECT_NEAR(e32.mean, 2.0, z999 * e32.stderr_);
+}
+
+TEST(Integrator, NegativeControlWrongAlbedoIsDetected) {
+    // The same test with the wrong expectation must fail: proves the bound is tight enough.
+    const auto s = iris::test::furnace(0.8);
+    const iris::light_sampler lights(s);
+    const iris::path_integrator<test_config<4>, false> integ(s, lights, {1000, 3});
+    const auto e = furnace_y(integ, s, 40000);
+    EXPECT_GT(std::fabs(e.mean - 5.0 * 1.05), z999 * e.stderr_);
+}
+
+}  // namespace
