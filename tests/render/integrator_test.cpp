@@ -31,6 +31,25 @@ struct uniform_distribution {
     }
 };
 
+/// \brief A 0/1 box restriction [a, b] on a uniform base pdf over [lo, hi]: the α = 0 end
+/// of a Box kernel, the case where the B term carries everything outside the window.
+struct box_distribution {
+    float lo = 380.0f, hi = 780.0f, a = 500.0f, b = 600.0f;
+    float restriction(float l) const noexcept { return l >= a && l <= b ? 1.0f : 0.0f; }
+    float normalisation() const noexcept { return (b - a) / (hi - lo); }
+    template <std::size_t C>
+    iris::sampled_wavelengths<C> sample_wavelengths(float u) const noexcept {
+        iris::sampled_wavelengths<C> wl;
+        for (std::size_t j = 0; j < C; ++j) {
+            float uj = u + static_cast<float>(j) / static_cast<float>(C);
+            uj -= std::floor(uj);
+            wl.lambda(j) = a + uj * (b - a);
+            wl.pdf(j) = 1.0f / (b - a);
+        }
+        return wl;
+    }
+};
+
 template <std::size_t C, bool Propagates = false>
 struct test_config {
     static constexpr std::size_t wavelength_count = C;
@@ -45,11 +64,11 @@ struct estimate {
 };
 
 /// \brief Mean of the Y estimates of `n` independent samples of one pixel.
-template <class Integrator>
-estimate furnace_y(const Integrator& integ, const iris::scene_desc& s, int n, float alpha = 1.0f) {
+template <class Integrator, class Distribution = uniform_distribution>
+estimate furnace_y(const Integrator& integ, const iris::scene_desc& s, int n, float alpha = 1.0f,
+                   const Distribution& dist = {}) {
     const iris::test::brute_force_intersector tracer(s);
     const iris::camera_rays cam(s.camera, s.camera.width, s.camera.height);
-    const uniform_distribution dist;
     double sum = 0.0, sum2 = 0.0;
     for (int i = 0; i < n; ++i) {
         iris::sample_stream rng(42, 7, static_cast<std::uint64_t>(i));
@@ -101,6 +120,29 @@ TEST(Integrator, NegativeControlWrongAlbedoIsDetected) {
     const iris::path_integrator<test_config<4>, false> integ(s, lights, {1000, 3});
     const auto e = furnace_y(integ, s, 40000);
     EXPECT_GT(std::fabs(e.mean - 5.0 * 1.05), z999 * e.stderr_);
+}
+
+TEST(Integrator, PropagatedTermRestoresTheUnrestrictedFurnace) {
+    // SPEC U1 at path level: no dispersion, so F_R + B is unbiased at every α. With the
+    // box at its narrowest (500–600 nm), B carries the quarter of the luminance outside it.
+    const auto s = iris::test::furnace(0.8);
+    const iris::light_sampler lights(s);
+    const iris::path_integrator<test_config<4, true>, false> integ(s, lights, {1000, 3});
+    const auto e = furnace_y(integ, s, 40000, 0.0f, box_distribution{});
+    EXPECT_NEAR(e.mean, 5.0, z999 * e.stderr_) << "stderr " << e.stderr_;
+}
+
+TEST(Integrator, RestrictionOnlyEstimatesTheWindowedIntegral) {
+    // Bias None: F = F_R estimates ∫ r f = 5 · ∫_{500}^{600} ȳ / ∫ȳ (paper Fig. 5: dim).
+    const auto s = iris::test::furnace(0.8);
+    const iris::light_sampler lights(s);
+    const iris::path_integrator<test_config<4, false>, false> integ(s, lights, {1000, 3});
+    double window = 0.0;  // ∫ȳ over the window, by the same 1 nm rule as ∫ȳ (trapezoid ends)
+    for (int l = 500; l <= 600; ++l) window += (l == 500 || l == 600 ? 0.5 : 1.0) * iris::cie::y_bar(l);
+    const double expected = 5.0 * window / iris::cie::y_integral;
+    const auto e = furnace_y(integ, s, 40000, 0.0f, box_distribution{});
+    EXPECT_NEAR(e.mean, expected, z999 * e.stderr_ + 1e-3) << "expected " << expected;  // 1e-3: quadrature of the window
+    EXPECT_LT(e.mean + z999 * e.stderr_, 5.0);  // and measurably dimmer than the truth
 }
 
 }  // namespace
