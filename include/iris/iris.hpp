@@ -23,3 +23,5 @@
 #include "iris/render/lights.hpp"
 #include "iris/render/random.hpp"
 #include "iris/render/scene.hpp"
+
+#include "iris/metrics/metrics.hpp"
