@@ -1,0 +1,264 @@
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include <iris/exr/exr.hpp>
+#include <iris/metrics/metrics.hpp>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "error_ramp.hpp"
+
+namespace iris::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// \brief Messages from OpenEXR may span lines; the exit-status policy promises one.
+std::string one_line(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    return s;
+}
+
+std::string size_of(const image& img) { return fmt::format("{}x{}", img.width(), img.height()); }
+
+/// \brief Read an EXR, turning every way it can fail into a usage_error naming the file.
+exr::loaded load(const std::string& path) {
+    std::error_code ec;
+    const auto status = fs::status(path, ec);
+    if (!fs::exists(status)) throw usage_error(fmt::format("cannot read '{}': no such file", path));
+    if (fs::is_directory(status)) throw usage_error(fmt::format("cannot read '{}': it is a directory", path));
+    exr::loaded out;
+    try {
+        out = exr::read(path);
+    } catch (const exr::error& e) {
+        throw usage_error(one_line(e.what()));
+    }
+    if (out.pixels.empty()) throw usage_error(fmt::format("'{}' has no pixels", path));
+    // The metrics refuse NaN/Inf too; checking here lets the message name the file.
+    for (int y = 0; y < out.pixels.height(); ++y)
+        for (int x = 0; x < out.pixels.width(); ++x) {
+            const rgb_pixel& p = out.pixels(x, y);
+            if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b))
+                throw usage_error(fmt::format("'{}' has a non-finite value (NaN or Inf) at pixel ({}, {})", path, x, y));
+        }
+    return out;
+}
+
+/// \brief Two images of the same size (the one check every two-image command needs first).
+struct image_pair {
+    exr::loaded test, reference;
+};
+
+image_pair load_pair(const std::string& image_path, const std::string& reference_path) {
+    image_pair p{load(image_path), load(reference_path)};
+    if (p.test.pixels.width() != p.reference.pixels.width() ||
+        p.test.pixels.height() != p.reference.pixels.height())
+        throw usage_error(fmt::format("'{}' is {} but '{}' is {}: the images must have the same size", image_path,
+                                      size_of(p.test.pixels), reference_path, size_of(p.reference.pixels)));
+    return p;
+}
+
+/// \brief Refuse an output name whose extension says another format (e.g. PNG bytes in
+/// a file called out.exr), before any work is done.
+void require_extension(const std::string& path, std::string_view ext, std::string_view option) {
+    std::string e = fs::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (e != ext) throw usage_error(fmt::format("{} '{}' must end in {}", option, path, ext));
+}
+
+/// \brief Run a writer of the exr module; its failures (unwritable directory, …) are the
+/// user's path, so they exit with status 2 like any other bad input.
+template <class Write>
+void write_output(const std::string& path, Write&& write) {
+    try {
+        write();
+    } catch (const exr::error& e) {
+        throw usage_error(one_line(e.what()));
+    }
+    fmt::print("wrote {}\n", path);
+}
+
+// ---- diff -----------------------------------------------------------------------------
+
+void diff(const std::string& image_path, const std::string& reference_path, bool json) {
+    const image_pair p = load_pair(image_path, reference_path);
+    const image_metrics m = compare(p.test.pixels, p.reference.pixels);
+    if (json) {
+        // fmt's "{}" is the shortest round-trip form, a valid JSON number for finite values;
+        // SSIM is undefined (NaN) below 11 × 11 and becomes null.
+        const std::string ssim = std::isnan(m.ssim) ? std::string("null") : fmt::format("{}", m.ssim);
+        fmt::print(
+            "{{\"mse\": {}, \"relmse\": {}, \"ssim\": {}, \"max_abs\": {}, \"pixels\": {}, \"width\": {}, "
+            "\"height\": {}}}\n",
+            m.mse, m.relmse, ssim, m.max_abs, m.pixels, p.test.pixels.width(), p.test.pixels.height());
+    } else {
+        fmt::print("mse={:.6g} relmse={:.6g} ssim={:.6f} max_abs={:.6g} pixels={}\n", m.mse, m.relmse, m.ssim,
+                   m.max_abs, m.pixels);
+    }
+}
+
+// ---- convert --------------------------------------------------------------------------
+
+void convert(const std::string& in, const std::string& out, const std::string& exposure_text) {
+    require_extension(out, ".png", "output");
+    const double exposure = parse_number(exposure_text, "--exposure (stops)");
+    const exr::loaded img = load(in);
+    write_output(out, [&] { exr::write_png(out, img.pixels, exposure); });
+}
+
+// ---- crop -----------------------------------------------------------------------------
+
+struct rect {
+    long long x = 0, y = 0, w = 0, h = 0;
+};
+
+rect parse_rect(const std::string& text) {
+    std::vector<long long> v;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        const std::string_view part =
+            std::string_view(text).substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        long long n = 0;
+        const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), n);
+        if (part.empty() || ec != std::errc() || end != part.data() + part.size())
+            throw usage_error(fmt::format("--rect must be X,Y,W,H (four integers), got '{}'", text));
+        v.push_back(n);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    if (v.size() != 4) throw usage_error(fmt::format("--rect must be X,Y,W,H (four integers), got '{}'", text));
+    const rect r{v[0], v[1], v[2], v[3]};
+    if (r.x < 0 || r.y < 0 || r.w < 1 || r.h < 1)
+        throw usage_error(fmt::format("--rect {}: X and Y must be >= 0, W and H >= 1", text));
+    return r;
+}
+
+void crop(const std::string& in, const std::string& rect_text, const std::string& out) {
+    require_extension(out, ".exr", "output");
+    const rect r = parse_rect(rect_text);
+    const exr::loaded src = load(in);
+    const long long w = src.pixels.width(), h = src.pixels.height();
+    // r.w and r.h are ≥ 1 and compared before adding, so the sums cannot overflow.
+    if (r.x >= w || r.y >= h || r.w > w - r.x || r.h > h - r.y)
+        throw usage_error(fmt::format("--rect {} (x {}..{}, y {}..{}) does not fit inside '{}', which is {}", rect_text,
+                                      r.x, r.x + r.w - 1, r.y, r.y + r.h - 1, in, size_of(src.pixels)));
+    image dst(static_cast<int>(r.w), static_cast<int>(r.h));
+    for (int y = 0; y < dst.height(); ++y)
+        for (int x = 0; x < dst.width(); ++x)
+            dst(x, y) = src.pixels(static_cast<int>(r.x) + x, static_cast<int>(r.y) + y);
+    write_output(out, [&] { exr::write(out, dst, src.meta); });
+}
+
+// ---- error-map ------------------------------------------------------------------------
+
+/// \brief Luminance (Rec. 709 / sRGB Y weights) of the per-channel absolute difference.
+std::vector<double> error_luminance(const image& a, const image& b) {
+    std::vector<double> e(a.pixel_count());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+        const rgb_pixel& p = a.pixels()[i];
+        const rgb_pixel& q = b.pixels()[i];
+        auto d = [](float u, float v) { return std::abs(static_cast<double>(u) - static_cast<double>(v)); };
+        e[i] = 0.2126 * d(p.r, q.r) + 0.7152 * d(p.g, q.g) + 0.0722 * d(p.b, q.b);
+    }
+    return e;
+}
+
+/// \brief Default scale: the nearest-rank 99th percentile (the ⌈0.99 N⌉-th smallest error),
+/// so a few fireflies do not flatten the rest of the map; the maximum if that is 0 (sparse
+/// errors), and 1 for equal images, so the map is defined (all dark) instead of 0/0.
+double default_scale(std::vector<double> e) {
+    const auto rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(e.size())));
+    const auto nth = e.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(rank, 1) - 1);
+    std::nth_element(e.begin(), nth, e.end());
+    if (*nth > 0.0) return *nth;
+    const double max = *std::max_element(e.begin(), e.end());
+    return max > 0.0 ? max : 1.0;
+}
+
+void error_map(const std::string& image_path, const std::string& reference_path, const std::string& out,
+               const std::string& scale_text) {
+    require_extension(out, ".png", "output");
+    double scale = 0.0;
+    if (!scale_text.empty()) {
+        scale = parse_number(scale_text, "--scale");
+        if (!(scale > 0.0)) throw usage_error(fmt::format("--scale must be > 0, got '{}'", scale_text));
+    }
+    const image_pair p = load_pair(image_path, reference_path);
+    const std::vector<double> e = error_luminance(p.test.pixels, p.reference.pixels);
+    const bool by_percentile = scale_text.empty();
+    if (by_percentile) scale = default_scale(e);
+    image map(p.test.pixels.width(), p.test.pixels.height());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+        const rgb c = error_ramp(e[i] / scale);
+        map.pixels()[i] = {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
+    }
+    fmt::print("scale={:.6g} ({})\n", scale, by_percentile ? "99th percentile of the error" : "--scale");
+    write_output(out, [&] { exr::write_png(out, map, 0.0); });
+}
+
+// ---- info -----------------------------------------------------------------------------
+
+void info(const std::string& in) {
+    const exr::loaded img = load(in);
+    fmt::print("width={} height={}\n", img.pixels.width(), img.pixels.height());
+    for (const auto& [key, value] : img.meta) fmt::print("{}={}\n", key, one_line(value));
+}
+
+}  // namespace
+
+void add_image_commands(CLI::App& app) {
+    // Option storage lives as long as the callbacks that read it (shared ownership).
+    struct options {
+        std::string image, reference, out, rect, exposure = "0", scale;
+        bool json = false;
+    };
+    auto o = std::make_shared<options>();
+
+    auto* diff_cmd = app.add_subcommand("diff", "Print mse, relmse, ssim, max_abs and the pixel count of IMAGE "
+                                                "against REFERENCE (docs/metrics.md)");
+    diff_cmd->add_option("IMAGE", o->image, "EXR to measure")->required();
+    diff_cmd->add_option("REFERENCE", o->reference, "reference EXR (relmse divides by it)")->required();
+    diff_cmd->add_flag("--json", o->json, "print one JSON object (keys mse relmse ssim max_abs pixels width height)");
+    diff_cmd->callback([o] { diff(o->image, o->reference, o->json); });
+
+    auto* convert_cmd = app.add_subcommand("convert", "Write an 8-bit sRGB PNG of an EXR");
+    convert_cmd->add_option("IMAGE", o->image, "input EXR")->required();
+    convert_cmd->add_option("-o,--output", o->out, "output PNG")->required();
+    convert_cmd->add_option("--exposure", o->exposure, "exposure in stops: pixels are scaled by 2^E")
+        ->capture_default_str();
+    convert_cmd->callback([o] { convert(o->image, o->out, o->exposure); });
+
+    auto* crop_cmd = app.add_subcommand("crop", "Write a rectangle of an EXR as an EXR, keeping its metadata");
+    crop_cmd->add_option("IMAGE", o->image, "input EXR")->required();
+    crop_cmd->add_option("--rect", o->rect, "X,Y,W,H in pixels; (X, Y) is the top-left corner, y = 0 the top row")
+        ->required();
+    crop_cmd->add_option("-o,--output", o->out, "output EXR")->required();
+    crop_cmd->callback([o] { crop(o->image, o->rect, o->out); });
+
+    auto* map_cmd = app.add_subcommand("error-map", "Write a false-colour PNG of the per-pixel error luminance "
+                                                    "|IMAGE - REFERENCE|");
+    map_cmd->add_option("IMAGE", o->image, "EXR to measure")->required();
+    map_cmd->add_option("REFERENCE", o->reference, "reference EXR")->required();
+    map_cmd->add_option("-o,--output", o->out, "output PNG")->required();
+    map_cmd->add_option("--scale", o->scale,
+                        "error at the top of the colour ramp (default: the 99th percentile of the error)");
+    map_cmd->callback([o] { error_map(o->image, o->reference, o->out, o->scale); });
+
+    auto* info_cmd = app.add_subcommand("info", "Print the size and string metadata of an EXR");
+    info_cmd->add_option("IMAGE", o->image, "input EXR")->required();
+    info_cmd->callback([o] { info(o->image); });
+}
+
+}  // namespace iris::app
