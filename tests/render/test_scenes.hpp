@@ -87,4 +87,20 @@ inline scene_desc furnace(double albedo = 0.8) {
     return s;
 }
 
+/// \brief The furnace with a dispersive glass cube (N-BK7 Sellmeier, or any IOR) inside.
+/// A lossless dielectric in a uniform radiance field leaves it uniform at every
+/// wavelength (radiance invariance, with the 1/η² scaling across the interface), so the
+/// camera still sees Y = 1 / (1 − a) — through the glass as well.
+inline scene_desc furnace_with_glass(double albedo, ior_model ior, float roughness = 0.0f) {
+    scene_desc s = furnace(albedo);
+    s.camera.look_at = {0.0f, 0.0f, 0.0f};
+    s.camera.position = {0.9f, 0.8f, 0.85f};
+    s.materials.push_back(material::dielectric{ior, roughness});
+    s.material_names.push_back("glass");
+    triangle_mesh cube = inward_box({-0.3f, -0.3f, -0.3f}, {0.3f, 0.3f, 0.3f});
+    for (auto& t : cube.triangles) std::swap(t[1], t[2]);  // outward
+    s.shapes.push_back({"glass-cube", cube, 1, std::nullopt});
+    return s;
+}
+
 }  // namespace iris::test

@@ -173,10 +173,21 @@ sampled_spectrum<N> etas(const ior_model& ior, const sampled_wavelengths<N>& wl)
 
 }  // namespace detail
 
+namespace detail {
+/// \brief A dielectric behaves as a delta BSDF when it is (numerically) smooth, or when
+/// its index is exactly 1: an invisible interface, whose microfacet half vector is
+/// undefined (ωi = −ωo), so it passes light straight through like smooth glass of η = 1.
+inline bool effectively_smooth(const material::dielectric& d) noexcept {
+    if (d.roughness < smooth_alpha) return true;
+    const auto* c = std::get_if<constant_ior>(&d.ior);
+    return c && c->value == 1.0;
+}
+}  // namespace detail
+
 /// \brief Is this material a delta BSDF (mirror, smooth glass)?
 inline bool is_delta(const material_desc& m) noexcept {
     if (std::holds_alternative<material::conductor>(m)) return true;
-    if (const auto* d = std::get_if<material::dielectric>(&m)) return d->roughness < detail::smooth_alpha;
+    if (const auto* d = std::get_if<material::dielectric>(&m)) return detail::effectively_smooth(*d);
     return false;
 }
 
@@ -189,7 +200,7 @@ sampled_spectrum<N> bsdf_eval(const material_desc& mat, const glm::vec3& n, cons
         if (co * ci <= 0.0f) return {};  // two-sided Lambertian: same side only
         return sample(d->reflectance, wl) * (std::fabs(ci) * detail::inv_pi);
     }
-    if (const auto* g = std::get_if<material::dielectric>(&mat); g && g->roughness >= detail::smooth_alpha) {
+    if (const auto* g = std::get_if<material::dielectric>(&mat); g && !detail::effectively_smooth(*g)) {
         const frame fr = frame::from_normal(n);
         const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
         const detail::ggx m{g->roughness};
@@ -209,7 +220,7 @@ sampled_spectrum<N> bsdf_pdf(const material_desc& mat, const glm::vec3& n, const
         const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
         return sampled_spectrum<N>(co * ci > 0.0f ? std::fabs(ci) * detail::inv_pi : 0.0f);
     }
-    if (const auto* g = std::get_if<material::dielectric>(&mat); g && g->roughness >= detail::smooth_alpha) {
+    if (const auto* g = std::get_if<material::dielectric>(&mat); g && !detail::effectively_smooth(*g)) {
         const frame fr = frame::from_normal(n);
         const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
         const detail::ggx m{g->roughness};
@@ -253,7 +264,7 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const g
     const auto& g = std::get<material::dielectric>(mat);
     const auto eta = detail::etas(g.ior, wl);
     const bool dispersive = is_dispersive(g.ior);
-    if (g.roughness < detail::smooth_alpha) {
+    if (detail::effectively_smooth(g)) {
         const float co = glm::dot(n, wo);
         sampled_spectrum<N> fr;
         for (std::size_t k = 0; k < N; ++k) fr[k] = detail::fresnel_dielectric(co, eta[k]);
