@@ -14,6 +14,18 @@
 #include "iris/spectrum/spectrum.hpp"
 #include "iris/spectrum/tabulated.hpp"
 
+#include "iris/sampling/bias.hpp"
+#include "iris/sampling/domain.hpp"
+#include "iris/sampling/estimator.hpp"
+#include "iris/sampling/hwss.hpp"
+#include "iris/sampling/integrator_config.hpp"
+#include "iris/sampling/presets.hpp"
+#include "iris/sampling/random.hpp"
+#include "iris/sampling/relaxation.hpp"
+#include "iris/sampling/restricted_distribution.hpp"
+#include "iris/sampling/restriction.hpp"
+#include "iris/sampling/spectral_pdf.hpp"
+
 #include "iris/render/bsdf.hpp"
 #include "iris/render/camera.hpp"
 #include "iris/render/film.hpp"

@@ -1,0 +1,49 @@
+#pragma once
+/// \file
+/// \brief `spectral_estimate`: one sample of F = F_R (+ B) for ∫Λ f(λ) dλ with a
+/// path-independent integrand (p(x̄ | λ) ≡ 1) — exactly the combination the integrator
+/// forms per path, with the path factors taken out, so that a policy's claims can be
+/// tested at the spectral level (SPEC U1: E[F] = ∫ f for `propagate_unused` at every α).
+///
+///     F_R = Σ_j r_α(λ_j) f(λ_j) / (p_α(λ_j) · C)        (÷ Z_α for `scaled_pdf`)
+///     B   = Σ_b (1 − r_α(λ_b)) f(λ_b) Δλ_b              (`propagate_unused` only)
+///
+/// E[F_R] = ∫ r_α f (÷ Z_α) because each λ_j is marginally p_α-distributed and
+/// r_α f / p_α vanishes wherever p_α does; E[B] = ∫ (1 − r_α) f because λ_b is uniform in
+/// its bin. Their sum is ∫ f: r and 1 − r partition unity (SPEC §3's r(λ) factor).
+
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include "iris/sampling/bias/bin_layout.hpp"
+#include "iris/sampling/bias/concept.hpp"
+#include "iris/sampling/hwss.hpp"
+
+namespace iris {
+
+/// \brief One sample of F for the bias policy `Bias` with C hero-rotated wavelengths.
+/// `u` drives the wavelengths, `u_jitter` the B term's bins; `f(λ)` → double.
+template <BiasPolicy Bias, std::size_t C, class Distribution, class F>
+double spectral_estimate(const Distribution& dist, const bias::bin_layout& bins, F&& f, float u, float u_jitter) {
+    const auto wl = dist.template sample_wavelengths<C>(u);
+    std::array<float, C> path{};
+    path.fill(1.0f);  // p(x̄ | λ_k) = 1 for every k: no path
+    const double z = Bias::scales_pdf ? static_cast<double>(dist.normalisation()) : 1.0;
+    double estimate = 0.0;
+    for (std::size_t j = 0; j < C; ++j) {
+        const double w = static_cast<double>(hwss_mis_weight(wl.pdf(j), std::span<const float>(path)));
+        if (w == 0.0) continue;
+        estimate += static_cast<double>(dist.restriction(wl[j])) * f(wl[j]) * w / z;
+    }
+    if constexpr (Bias::propagates) {
+        for (std::size_t b = 0; b < bins.count(); ++b) {
+            const float l = bins.lambda(b, u_jitter);
+            const double keep = 1.0 - static_cast<double>(dist.restriction(l));
+            if (keep > 0.0) estimate += keep * f(l) * bins.width(b);
+        }
+    }
+    return estimate;
+}
+
+}  // namespace iris

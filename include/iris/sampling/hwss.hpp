@@ -1,0 +1,50 @@
+#pragma once
+/// \file
+/// \brief Hero wavelength sampling with a restricted pdf (SPEC §2): the rotation of the
+/// hero's primary sample and the MIS weight of wavelength j.
+///
+///     F_R = Σ_j r_α(λ_j) f(x̄, λ_j) · w_j,   w_j = 1 / (p_α(λ_j) · Σ_k p(x̄ | λ_k))
+///
+/// **[SPEC fix]** p_α(λ_j) stands outside the sum over k. The paper's Eq. 4 puts
+/// p_α(λ_k) inside it, which is the same only when p_α is uniform: the rotation
+/// u_j = frac(u + j/C) preserves p_α(λ) dλ, not dλ, so the balance heuristic over the C
+/// rotations compares the path densities p(x̄ | λ_k) alone. tests/sampling keeps the
+/// paper's form in one test, which shows it biased for a non-uniform p_α.
+
+#include <cmath>
+#include <cstddef>
+#include <span>
+
+#include "iris/spectrum/sampled.hpp"
+
+namespace iris {
+
+/// \brief u_j = frac(u + j/C) in double (so it is never 1); u outside [0, 1) is clamped
+/// first (NaN → 0). The C values are stratified: exactly one falls in each [k/C, (k+1)/C).
+constexpr double hwss_rotation(float u, std::size_t j, std::size_t C) noexcept {
+    double x = static_cast<double>(u);
+    if (!(x >= 0.0)) x = 0.0;
+    if (x >= 1.0) x = 0x1.fffffffffffffp-1;
+    x += static_cast<double>(j % C) / static_cast<double>(C);
+    return x >= 1.0 ? x - 1.0 : x;
+}
+
+/// \brief w_j = 1 / (p_α(λ_j) Σ_k p(x̄ | λ_k)) (SPEC §2). Non-positive or NaN path pdfs
+/// count as 0 (a terminated secondary wavelength); the weight is 0 — never NaN or Inf —
+/// when p_α(λ_j) ≤ 0, the sum is 0, or the weight would overflow.
+inline float hwss_mis_weight(float restricted_pdf_j, std::span<const float> path_pdfs) noexcept {
+    double sum = 0.0;
+    for (float p : path_pdfs) sum += p > 0.0f ? static_cast<double>(p) : 0.0;
+    const double den = static_cast<double>(restricted_pdf_j) * sum;
+    if (!(restricted_pdf_j > 0.0f) || !(den > 0.0)) return 0.0f;
+    const double w = 1.0 / den;
+    return w <= 3.0e38 ? static_cast<float>(w) : 0.0f;
+}
+
+/// \brief The same for the C path pdfs of a `sampled_spectrum<C>`.
+template <std::size_t C>
+float hwss_mis_weight(float restricted_pdf_j, const sampled_spectrum<C>& path_pdfs) noexcept {
+    return hwss_mis_weight(restricted_pdf_j, std::span<const float>(path_pdfs.values()));
+}
+
+}  // namespace iris

@@ -1,0 +1,142 @@
+#pragma once
+/// \file
+/// \brief The presets: one type list of named `integrator_config`s. It drives the name →
+/// instantiation registry (`dispatch_preset`), the typed tests and the templated
+/// benchmarks; adding a preset here adds it everywhere.
+///
+/// | CLI name | config name | what it is |
+/// |---|---|---|
+/// | `hwss` | `unrestricted/none/C4/none` | the baseline: plain HWSS, uniform p, 4 wavelengths |
+/// | `paper` | `multibox3/linear/C4/propagate` | the paper's method: three boxes, linear relaxation, propagation |
+/// | `paper-quadratic` | `multibox3/quadratic/C4/propagate` | the paper's suggested quadratic relaxation |
+/// | `box` | `box/linear/C4/propagate` | one window at 580 nm (paper Fig. 5) with propagation |
+/// | `gaussian` | `gaussian/linear/C4/propagate` | the smooth kernel with propagation |
+/// | `scaled-pdf` | `multibox3/linear/C4/scaled` | the paper's "scaling PDFs" (Fig. 7) |
+/// | `restrict-only` | `multibox3/linear/C4/none` | restriction without a bias term (dim early) |
+/// | `hwss-c1` | `unrestricted/none/C1/none` | one wavelength per path |
+/// | `hwss-c8` | `unrestricted/none/C8/none` | eight wavelengths per path |
+/// | `hwss-visible` | `unrestricted/none/C4/none/visible` | HWSS with pbrt-v4's luminance-shaped p |
+///
+/// Every preset's base pdf is default-constructible, so `cfg.distribution(alpha)` works
+/// for all of them; an illuminant-shaped base pdf needs the scene's emitters and is made
+/// with `integrator_config<…, spectral_pdf::illuminant>` by the caller.
+
+#include <array>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "iris/sampling/integrator_config.hpp"
+
+namespace iris {
+
+/// \brief A compile-time list of types.
+template <class... T>
+struct type_list {
+    static constexpr std::size_t size = sizeof...(T);
+};
+
+namespace detail {
+/// \brief A string usable as a template argument (a preset's CLI name).
+template <std::size_t N>
+struct fixed_string {
+    char data[N]{};
+    constexpr fixed_string(const char (&s)[N]) noexcept {
+        for (std::size_t i = 0; i < N; ++i) data[i] = s[i];
+    }
+    constexpr std::string_view view() const noexcept { return {data, N - 1}; }
+};
+}  // namespace detail
+
+/// \brief A configuration with the short name the command lines use (`paper`). It *is*
+/// the configuration (it derives from it), so it can be passed wherever one is expected.
+template <detail::fixed_string CliName, class Config>
+struct named_preset : Config {
+    using config_type = Config;
+    static constexpr std::string_view cli_name = CliName.view();
+    using Config::Config;
+};
+
+/// \brief The presets, one type each (`iris::preset::paper`, …).
+namespace preset {
+using namespace iris::restriction;
+using hwss = named_preset<"hwss", integrator_config<unrestricted, relaxation::none, 4, bias::none>>;
+using paper = named_preset<"paper", integrator_config<multi_box<3>, relaxation::linear, 4, bias::propagate_unused>>;
+using paper_quadratic =
+    named_preset<"paper-quadratic", integrator_config<multi_box<3>, relaxation::quadratic, 4, bias::propagate_unused>>;
+using box_linear = named_preset<"box", integrator_config<box, relaxation::linear, 4, bias::propagate_unused>>;
+using gaussian_linear =
+    named_preset<"gaussian", integrator_config<gaussian, relaxation::linear, 4, bias::propagate_unused>>;
+using scaled_pdf = named_preset<"scaled-pdf", integrator_config<multi_box<3>, relaxation::linear, 4, bias::scaled_pdf>>;
+using restrict_only = named_preset<"restrict-only", integrator_config<multi_box<3>, relaxation::linear, 4, bias::none>>;
+using hwss_c1 = named_preset<"hwss-c1", integrator_config<unrestricted, relaxation::none, 1, bias::none>>;
+using hwss_c8 = named_preset<"hwss-c8", integrator_config<unrestricted, relaxation::none, 8, bias::none>>;
+using hwss_visible =
+    named_preset<"hwss-visible", integrator_config<unrestricted, relaxation::none, 4, bias::none, spectral_pdf::visible>>;
+}  // namespace preset
+
+/// \brief Every preset, in the order the tools list them (`hwss` first: the baseline).
+using presets = type_list<preset::hwss, preset::paper, preset::paper_quadratic, preset::box_linear,
+                          preset::gaussian_linear, preset::scaled_pdf, preset::restrict_only, preset::hwss_c1,
+                          preset::hwss_c8, preset::hwss_visible>;
+
+namespace detail {
+template <class... P>
+constexpr std::array<std::string_view, sizeof...(P)> cli_names(type_list<P...>) noexcept {
+    return {P::cli_name...};
+}
+template <class... P>
+constexpr std::array<std::string_view, sizeof...(P)> config_names(type_list<P...>) noexcept {
+    return {P::name...};
+}
+
+template <class F, class P, class... Rest>
+decltype(auto) dispatch_in(std::string_view name, F& f, type_list<P, Rest...>);
+}  // namespace detail
+
+/// \brief The presets' CLI names (`hwss`, `paper`, …), in list order.
+constexpr std::array<std::string_view, presets::size> preset_names() noexcept { return detail::cli_names(presets{}); }
+/// \brief The presets' config names (`multibox3/linear/C4/propagate`, …), in list order.
+constexpr std::array<std::string_view, presets::size> preset_config_names() noexcept {
+    return detail::config_names(presets{});
+}
+
+/// \brief "unknown preset 'x'; accepted: hwss, paper, …" (the message `dispatch_preset` throws).
+inline std::string unknown_preset_message(std::string_view name) {
+    std::string s = "unknown preset '" + std::string(name) + "'; accepted: ";
+    const auto names = preset_names();
+    for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + std::string(names[i]);
+    return s;
+}
+
+/// \brief Call `f.template operator()<P>()` for the preset P whose CLI name or config
+/// name is `name`, and return what it returns (the same type for every preset).
+/// This is the one place where a runtime name becomes a compile-time configuration.
+/// \throws std::invalid_argument listing the valid names if there is no such preset.
+template <class F>
+decltype(auto) dispatch_preset(std::string_view name, F&& f) {
+    return detail::dispatch_in(name, f, presets{});
+}
+
+/// \brief Call `f.template operator()<P>()` for every preset P, in list order.
+template <class F>
+void for_each_preset(F&& f) {
+    [&]<class... P>(type_list<P...>) { (f.template operator()<P>(), ...); }(presets{});
+}
+
+namespace detail {
+template <class F, class P, class... Rest>
+decltype(auto) dispatch_in(std::string_view name, F& f, type_list<P, Rest...>) {
+    if constexpr (sizeof...(Rest) == 0) {
+        if (name == P::cli_name || name == P::name) return f.template operator()<P>();
+        throw std::invalid_argument(unknown_preset_message(name));
+    } else {
+        if (name == P::cli_name || name == P::name) return f.template operator()<P>();
+        return dispatch_in(name, f, type_list<Rest...>{});
+    }
+}
+}  // namespace detail
+
+}  // namespace iris
