@@ -225,6 +225,21 @@ TEST(Distribution, LawsForEveryKernelAndBasePdf) {
                     cells += static_cast<double>(dist.cell_density(i)) *
                              (static_cast<double>(dist.cell(i).hi) - dist.cell(i).lo);
                 ASSERT_NEAR(cells, 1.0, 1e-5);
+                // pdf() is exactly that piecewise-constant function: the cell's density
+                // inside each cell, 0 in the gaps between cells
+                for (std::size_t i = 0; i < dist.cell_count(); ++i) {
+                    const auto c = dist.cell(i);
+                    const float mid = c.lo + 0.5f * (c.hi - c.lo);
+                    if (mid > c.lo && mid < c.hi) {
+                        ASSERT_EQ(dist.pdf(mid), dist.cell_density(i)) << "in cell " << i;
+                    }
+                    if (i + 1 < dist.cell_count() && dist.cell(i + 1).lo > c.hi) {
+                        const float gap = c.hi + 0.5f * (dist.cell(i + 1).lo - c.hi);
+                        if (gap > c.hi && gap < dist.cell(i + 1).lo) {
+                            ASSERT_EQ(dist.pdf(gap), 0.0f) << "between cells " << i << " and " << i + 1;
+                        }
+                    }
+                }
                 ASSERT_NEAR(integrate_pdf(dist), 1.0, 1e-5);
                 // non-negative and finite everywhere, 0 outside Λ
                 for (float l : lambdas) {
