@@ -4,6 +4,12 @@
 //   iris-spectrum xyz NAME                  XYZ, xy and linear sRGB of an illuminant (Y = 1)
 //   iris-spectrum ior GLASS NM [--model M]  refractive index (sellmeier | cauchy)
 //   iris-spectrum plot NAME... -o FILE.png  plot of SPDs, each normalised to luminance 1
+//   iris-spectrum presets                   the sampling presets (CLI and config names)
+//   iris-spectrum pdf --preset P (--alpha A | --iteration I [--nthold N]) [--step NM]
+//                                           CSV lambda,pdf of the restricted pdf p_α
+//   iris-spectrum sample --preset P --alpha A --count N [--seed S]
+//                                           CSV lambda,pdf of N draws of C wavelengths
+//   iris-spectrum plot-pdf --preset P -o FILE.png   p_α for α = 0, .25, .5, .75, 1
 //
 // NAME is a built-in illuminant (`iris-spectrum list`) or blackbody:KELVIN.
 // Bad input: one line on stderr, exit status 2.
@@ -19,5 +25,6 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string(iris::version));
     app.require_subcommand(1);
     iris::app::add_spectrum_commands(app);
+    iris::app::add_policy_commands(app);
     return iris::app::run(app, argc, argv);
 }

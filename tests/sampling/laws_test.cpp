@@ -321,6 +321,22 @@ TEST(Distribution, WindowsHoldExactlyTheirMass) {
     EXPECT_FLOAT_EQ(d.base_pdf(500.0f), 1.0f / 400.0f);
 }
 
+TEST(Distribution, WindowsGrowLinearlyIntoTheirShares) {
+    // with uniform p, Z_α is the covered fraction of Λ: (Σ w0 + α (|Λ| − Σ w0)) / |Λ|
+    for (float a : {0.0f, 0.1f, 0.25f, 0.5f, 0.75f, 0.99f, 1.0f}) {
+        const restricted_distribution m(spectral_pdf::uniform{}, restriction::multi_box<3>{}, a);
+        EXPECT_NEAR(m.normalisation(), (60.0f + a * 340.0f) / 400.0f, 2e-6f) << a;
+        EXPECT_EQ(m.bound_kernel().support().size(), a < 1.0f ? 3u : 1u) << a;  // disjoint until α = 1
+        const restricted_distribution b(spectral_pdf::uniform{}, restriction::box{}, a);
+        EXPECT_NEAR(b.normalisation(), (20.0f + a * 380.0f) / 400.0f, 2e-6f) << a;
+    }
+    // centres in any order, or equal, still cover Λ at α → 1
+    restriction::multi_box<3> shuffled;
+    shuffled.centres_nm = {611.0f, 464.0f, 611.0f};
+    const restricted_distribution s(spectral_pdf::uniform{}, shuffled, 1.0f - 1e-6f);
+    EXPECT_NEAR(s.normalisation(), 1.0f, 1e-5f);
+}
+
 TEST(Distribution, GaussianHasTheAreaOfTheBox) {
     // σ0 = 20/√(2π): at α = 0 the Gaussian holds as much uniform mass as the 20 nm box
     const restricted_distribution g(spectral_pdf::uniform{}, restriction::gaussian{}, 0.0f);

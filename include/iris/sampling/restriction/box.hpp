@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// \brief `restriction::box`: one window [c − w(α)/2, c + w(α)/2], r = 1 inside, 0 outside.
-/// w(α) = w0 + α (w_cover − w0), w_cover = 2 max(c − λmin, λmax − c): at α = 1 the box
-/// covers Λ (and r_1 ≡ 1 holds exactly: the window is then the whole line).
+/// \brief `restriction::box`: one window, r = 1 inside, 0 outside. Its edges move
+/// linearly from c ∓ w0/2 at α = 0 to λmin and λmax at α = 1, so the window covers
+/// w0 + α (|Λ| − w0) of Λ (when it starts inside Λ); at α = 1 it is the whole line, so
+/// r_1 ≡ 1 holds exactly.
 ///
 /// Parameters (nm)   | default | note
 /// ------------------|---------|-----------------------------------------------
@@ -22,7 +23,7 @@ struct box {
     static constexpr std::string_view name = "box";
     static constexpr std::size_t max_intervals = 1;
     /// \brief Narrowest window used (nm): law 3 needs a window of positive width.
-    static constexpr float min_width_nm = 1e-3f;
+    static constexpr float min_width_nm = static_cast<float>(detail::min_window_nm);
 
     float centre_nm = 580.0f;
     float width_nm = 20.0f;
@@ -38,18 +39,9 @@ struct box {
         constexpr const interval_set<1>& support() const noexcept { return window; }
     };
 
-    /// \brief The window [lo, hi] of a box of centre c and initial width w0 at α on d
-    /// (shared with `multi_box`, so r and the support always agree bit for bit).
+    /// \brief The window [lo, hi] of a box of centre c and initial width w0 at α on d.
     static constexpr spectral_interval window_at(float centre, float w0, float alpha, const spectral_domain& d) noexcept {
-        const float a = detail::clamp_alpha(alpha);
-        if (a >= 1.0f) return {-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
-        const double c = detail::sane_centre(centre, d);
-        const double cover = detail::cover_width(c, d);
-        double w = static_cast<double>(w0);
-        if (!(w >= static_cast<double>(min_width_nm))) w = static_cast<double>(min_width_nm);  // also NaN
-        if (w > cover) w = cover;
-        const double half = 0.5 * (w + static_cast<double>(a) * (cover - w));
-        return {static_cast<float>(c - half), static_cast<float>(c + half)};
+        return detail::grow_window(detail::sane_centre(centre, d), w0, d.min_nm, d.max_nm, alpha);
     }
 
     constexpr bound bind(float alpha, const spectral_domain& d) const noexcept {

@@ -26,6 +26,7 @@
 #include <array>
 #include <concepts>
 #include <cstddef>
+#include <limits>
 #include <string_view>
 
 #include "iris/sampling/domain.hpp"
@@ -111,10 +112,25 @@ constexpr float clamp_alpha(float alpha) noexcept {
     if (!(alpha >= 0.0f)) return alpha < 0.0f ? 0.0f : 1.0f;
     return alpha > 1.0f ? 1.0f : alpha;
 }
-/// \brief The width of a window centred at c that covers d at α = 1.
-constexpr double cover_width(double c, const spectral_domain& d) noexcept {
-    return 2.0 * std::max(c - static_cast<double>(d.min_nm), static_cast<double>(d.max_nm) - c);
+/// \brief The narrowest window used (nm): law 3 needs a window of positive width.
+inline constexpr double min_window_nm = 1e-3;
+
+/// \brief A window of centre c and initial width w0 whose edges move linearly, as α goes
+/// from 0 to 1, from c ∓ w0/2 out to [share_lo, share_hi] (its part of Λ). An edge that
+/// already lies beyond its share stays where it is, so the window never shrinks (law 2).
+/// At α = 1 the window is the whole line: r_1 ≡ 1 exactly, whatever the rounding (law 1).
+constexpr spectral_interval grow_window(double c, float w0, double share_lo, double share_hi, float alpha) noexcept {
+    const float a = clamp_alpha(alpha);
+    if (a >= 1.0f) return {-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+    double w = static_cast<double>(w0);
+    if (!(w >= min_window_nm)) w = min_window_nm;  // also NaN
+    if (w > 4.0 * (share_hi - share_lo) + 1e6) w = 4.0 * (share_hi - share_lo) + 1e6;  // also Inf
+    const double lo0 = c - 0.5 * w, hi0 = c + 0.5 * w, t = static_cast<double>(a);
+    const double lo = lo0 > share_lo ? lo0 + t * (share_lo - lo0) : lo0;
+    const double hi = hi0 < share_hi ? hi0 + t * (share_hi - hi0) : hi0;
+    return {static_cast<float>(lo), static_cast<float>(hi)};
 }
+
 /// \brief Mean over [lo, hi] of the indicator of the closed window w (overlap / length).
 constexpr double window_average(const spectral_interval& w, float lo, float hi) noexcept {
     const double a = std::max(static_cast<double>(lo), static_cast<double>(w.lo));

@@ -1,7 +1,14 @@
 #pragma once
 /// \file
-/// \brief `restriction::multi_box<N>`: N windows, each growing like `box`; r = 1 inside any
-/// of them. The paper's multimodal kernel (three boxes near blue, green and red).
+/// \brief `restriction::multi_box<N>`: N windows; r = 1 inside any of them. The paper's
+/// multimodal kernel (three boxes near blue, green and red).
+///
+/// Growth: window k owns a share of Λ — the wavelengths nearer its centre than any other
+/// centre (cut at the midpoints between neighbouring centres) — and its edges move
+/// linearly from c_k ∓ w0_k/2 at α = 0 to the ends of its share at α = 1. The union of
+/// the windows therefore grows linearly from Σ w0_k to |Λ| (when the windows start inside
+/// their shares; an edge that starts beyond its share stays put), instead of the windows
+/// swallowing the spectrum long before α = 1. At α = 1 the union is Λ: r_1 ≡ 1 exactly.
 ///
 /// Parameters (nm)     | default (N = 3)        | default (other N)
 /// --------------------|------------------------|------------------------------------------
@@ -11,6 +18,7 @@
 /// The N = 3 centres are the dominant wavelengths of the sRGB primaries (blue, green, red)
 /// seen from D65: the windows sit where the display's three colours come from, which is
 /// what the paper's placement by hand aimed at (its Fig. 6 used 465, 570, 580 nm).
+/// Centres are clamped into Λ and may come in any order.
 
 #include <algorithm>
 #include <array>
@@ -18,7 +26,6 @@
 #include <string_view>
 
 #include "iris/sampling/detail/name.hpp"
-#include "iris/sampling/restriction/box.hpp"
 #include "iris/sampling/restriction/concept.hpp"
 
 namespace iris::restriction {
@@ -80,10 +87,22 @@ struct multi_box {
     };
 
     constexpr bound bind(float alpha, const spectral_domain& d) const noexcept {
+        // centres in increasing order (insertion sort: N is small), then each one's share
+        std::array<std::size_t, N> order{};
+        std::array<double, N> c{};
+        for (std::size_t k = 0; k < N; ++k) {
+            order[k] = k;
+            c[k] = detail::sane_centre(centres_nm[k], d);
+        }
+        for (std::size_t i = 1; i < N; ++i)
+            for (std::size_t j = i; j > 0 && c[order[j]] < c[order[j - 1]]; --j) std::swap(order[j], order[j - 1]);
         bound b;
         interval_set<N> s;
-        for (std::size_t k = 0; k < N; ++k) {
-            b.windows[k] = box::window_at(centres_nm[k], widths_nm[k], alpha, d);
+        for (std::size_t i = 0; i < N; ++i) {
+            const std::size_t k = order[i];
+            const double share_lo = i == 0 ? static_cast<double>(d.min_nm) : 0.5 * (c[order[i - 1]] + c[k]);
+            const double share_hi = i + 1 == N ? static_cast<double>(d.max_nm) : 0.5 * (c[k] + c[order[i + 1]]);
+            b.windows[k] = detail::grow_window(c[k], widths_nm[k], share_lo, share_hi, alpha);
             s.insert(b.windows[k].lo, b.windows[k].hi);
         }
         b.merged = s.clipped(d);
