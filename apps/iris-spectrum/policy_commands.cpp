@@ -111,7 +111,7 @@ void print_pdf(const policy_options& o) {
         fmt::memory_buffer out;
         fmt::format_to(std::back_inserter(out), "lambda,pdf\n");
         for (double l : wavelength_grid(cfg.params.domain, step))
-            fmt::format_to(std::back_inserter(out), "{:.10g},{:.9g}\n", l, dist.pdf(static_cast<float>(l)));
+            fmt::format_to(std::back_inserter(out), "{:.10g},{}\n", l, dist.pdf(static_cast<float>(l)));
         std::fwrite(out.data(), 1, out.size(), stdout);
     });
 }
@@ -133,7 +133,7 @@ void print_samples(const policy_options& o) {
         for (std::uint64_t n = 0; n < count; ++n) {
             const auto wl = dist.template sample_wavelengths<P::wavelength_count>(rng.next());
             for (std::size_t j = 0; j < P::wavelength_count; ++j)
-                fmt::format_to(std::back_inserter(out), "{:.9g},{:.9g}\n", wl[j], wl.pdf(j));
+                fmt::format_to(std::back_inserter(out), "{},{}\n", wl[j], wl.pdf(j));
             if (out.size() > (1u << 20)) {
                 std::fwrite(out.data(), 1, out.size(), stdout);
                 out.clear();
