@@ -1,0 +1,177 @@
+#include "ablation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+
+#include <unistd.h>
+
+#include <fmt/core.h>
+
+#include <iris/exr/exr.hpp>
+#include <iris/metrics/metrics.hpp>
+#include <iris/renderer/renderer.hpp>
+#include <iris/scene/scene.hpp>
+#include <iris/version.hpp>
+
+#include "cli.hpp"
+
+namespace iris::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// \brief Seed of the reference render: far from the evaluated seeds 1..K, so the
+/// reference's noise is independent of every evaluated image's.
+constexpr std::uint64_t reference_seed = 0x5eed0f0ddull;
+
+std::string file_safe(std::string s) {
+    for (char& c : s)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) c = '_';
+    return s;
+}
+
+/// \brief Progress over the whole run (all references and renders), with ETA.
+class progress {
+public:
+    explicit progress(double total_passes) : m_total(total_passes), m_tty(::isatty(STDERR_FILENO) != 0) {}
+    void step(const std::string& what, int spp, double pass_weight = 1.0) {
+        m_done += pass_weight;
+        if (!m_tty) return;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+        const double frac = std::min(1.0, m_done / m_total);
+        const double eta = frac > 0 ? elapsed / frac * (1.0 - frac) : 0.0;
+        fmt::print(stderr, "\r{:<32} {:>6} spp   overall {:5.1f} %   ETA {:.0f} s      ", what, spp, 100.0 * frac, eta);
+    }
+    void line(const std::string& msg) {
+        if (m_tty) fmt::print(stderr, "\r{:<90}\r", "");
+        fmt::print(stderr, "{}\n", msg);
+    }
+
+private:
+    double m_total, m_done = 0.0;
+    bool m_tty;
+    std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
+};
+
+image reference_image(const scene_desc& scene, const ablation_options& opt, int w, int h, progress& prog) {
+    const std::string key = fmt::format("{}-{:x}-{}x{}-ref{}-seed{:x}-v{}", file_safe(scene.name),
+                                        std::hash<std::string>{}(opt.scene), w, h, opt.reference_spp, reference_seed,
+                                        iris::version);
+    const fs::path cached = opt.cache / (key + ".exr");
+    if (fs::exists(cached)) {
+        try {
+            auto img = exr::read(cached).pixels;
+            if (img.width() == w && img.height() == h) {
+                prog.step("reference (cached)", opt.reference_spp, opt.reference_spp);
+                prog.line(fmt::format("reference: {} (cached)", cached.string()));
+                return img;
+            }
+        } catch (const exr::error&) {
+            // unreadable cache entry: render it again
+        }
+    }
+    renderer::options ro;
+    ro.preset = "hwss";
+    ro.spp = opt.reference_spp;
+    ro.seed = reference_seed;
+    ro.threads = opt.threads;
+    ro.width = w;
+    ro.height = h;
+    ro.nthold = opt.nthold;
+    film f(w, h);
+    renderer::hooks hk;
+    hk.on_pass = [&](const film&, const renderer::status& st) {
+        prog.step("reference hwss", st.spp_done);
+        return true;
+    };
+    const auto st = renderer::render(scene, ro, f, hk);
+    image img = f.to_image();
+    std::error_code ec;
+    fs::create_directories(opt.cache, ec);
+    if (!ec) {
+        exr::write(cached, img,
+                   {{"iris:scene", scene.name}, {"iris:preset", "hwss"}, {"iris:spp", std::to_string(st.spp_done)},
+                    {"iris:seed", std::to_string(reference_seed)}, {"iris:version", std::string(iris::version)}});
+        prog.line(fmt::format("reference: {} spp in {:.1f} s, cached as {}", st.spp_done, st.seconds, cached.string()));
+    }
+    return img;
+}
+
+}  // namespace
+
+ablation_result run_ablation(const ablation_options& opt) {
+    for (const auto& p : opt.presets) {
+        try {
+            (void)renderer::config_name(p);
+        } catch (const std::invalid_argument& e) {
+            throw usage_error(e.what());
+        }
+    }
+    scene_desc scene;
+    try {
+        scene = scene::load_scene(opt.scene);
+    } catch (const std::exception& e) {
+        throw usage_error(e.what());
+    }
+    std::error_code ec;
+    fs::create_directories(opt.out / "snapshots", ec);
+    if (ec) throw usage_error(fmt::format("cannot create output directory '{}': {}", opt.out.string(), ec.message()));
+    const int w = opt.width > 0 ? opt.width : scene.camera.width;
+    const int h = opt.height > 0 ? opt.height : scene.camera.height;
+    const int max_spp = opt.spp.back();
+
+    // work estimate in passes (time-equal renders count their largest budget's passes as they go)
+    progress prog(static_cast<double>(opt.reference_spp) +
+                  static_cast<double>(opt.presets.size()) * opt.seeds * max_spp);
+    ablation_result result;
+    result.reference = reference_image(scene, opt, w, h, prog);
+
+    for (const auto& preset : opt.presets) {
+        for (int seed = 1; seed <= opt.seeds; ++seed) {
+            renderer::options ro;
+            ro.preset = preset;
+            ro.seed = static_cast<std::uint64_t>(seed);
+            ro.threads = opt.threads;
+            ro.nthold = opt.nthold;
+            ro.width = w;
+            ro.height = h;
+            ro.spp = opt.budgets.empty() ? max_spp : 10'000'000;  // time-equal: stop by budget
+            std::size_t next_spp = 0, next_budget = 0;
+            film f(w, h);
+            renderer::hooks hk;
+            hk.on_pass = [&](const film& film_now, const renderer::status& st) {
+                prog.step(fmt::format("{} seed {}", preset, seed), st.spp_done, st.spp_done <= max_spp ? 1.0 : 0.0);
+                auto row = [&](double budget) {
+                    const image img = film_now.to_image();
+                    const auto m = compare(img, result.reference);
+                    return std::pair{ablation_row{scene.name, preset, seed, st.spp_done, st.seconds, m.mse, m.relmse,
+                                                  m.ssim, budget},
+                                     img};
+                };
+                if (next_spp < opt.spp.size() && st.spp_done == opt.spp[next_spp]) {
+                    auto [r, img] = row(0.0);
+                    result.spp_rows.push_back(r);
+                    exr::write(opt.out / "snapshots" / fmt::format("{}-seed{}-{}spp.exr", file_safe(preset), seed, st.spp_done),
+                               img, {{"iris:scene", scene.name}, {"iris:preset", preset},
+                                     {"iris:spp", std::to_string(st.spp_done)}, {"iris:seed", std::to_string(seed)},
+                                     {"iris:seconds", fmt::format("{:.3f}", st.seconds)}});
+                    if (next_spp == 0 && seed == 1) result.first_snapshots.emplace_back(preset, img);
+                    ++next_spp;
+                }
+                while (next_budget < opt.budgets.size() && st.seconds >= opt.budgets[next_budget]) {
+                    result.time_rows.push_back(row(opt.budgets[next_budget]).first);
+                    ++next_budget;
+                }
+                return next_spp < opt.spp.size() || next_budget < opt.budgets.size();
+            };
+            const auto st = renderer::render(scene, ro, f, hk);
+            prog.line(fmt::format("{} seed {}: {} spp in {:.2f} s ({} NaN/Inf dropped)", preset, seed, st.spp_done,
+                                  st.seconds, st.nan_inf));
+        }
+    }
+    return result;
+}
+
+}  // namespace iris::app

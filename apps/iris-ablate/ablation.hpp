@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// \brief The ablation run behind iris-ablate: references, progressive renders with
+/// snapshots at spp counts and time budgets, metrics against the reference.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <iris/image.hpp>
+
+namespace iris::app {
+
+struct ablation_options {
+    std::string scene;
+    std::vector<std::string> presets{"hwss", "paper"};
+    std::vector<int> spp{16, 32, 64, 128, 256, 512};
+    std::vector<double> budgets;  ///< seconds; empty: no time-equal mode
+    int reference_spp = 16384;
+    int seeds = 1;
+    int width = 0, height = 0;  ///< 0: the scene's
+    int threads = 0;
+    int nthold = 512;
+    std::filesystem::path out;
+    std::filesystem::path cache;
+    std::string crop;  ///< "x,y,w,h"; empty: the centre
+};
+
+/// \brief One row of results.csv (and of the time-equal table, where `budget` > 0).
+struct ablation_row {
+    std::string scene, preset;
+    int seed = 0;
+    int spp = 0;
+    double seconds = 0, mse = 0, relmse = 0, ssim = 0;
+    double budget = 0;
+};
+
+struct ablation_result {
+    std::vector<ablation_row> spp_rows;
+    std::vector<ablation_row> time_rows;
+    image reference;
+    std::vector<std::pair<std::string, image>> first_snapshots;  ///< per preset, seed 0, smallest spp
+};
+
+ablation_result run_ablation(const ablation_options& opt);
+
+/// \brief results.csv, plots, crops, summary.md in opt.out.
+void write_report(const ablation_options& opt, const ablation_result& r);
+
+}  // namespace iris::app

@@ -1,0 +1,130 @@
+// The renderer end to end on built-in scenes: determinism, extremes, bad options.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+
+#include <iris/renderer/renderer.hpp>
+#include <iris/scene/scene.hpp>
+
+namespace {
+
+struct rendered {
+    iris::film film{1, 1};
+    iris::renderer::status status;
+};
+
+rendered render(const iris::scene_desc& s, const std::string& preset, int spp, int w, int h, std::uint64_t seed = 1,
+                int threads = 2, int nthold = 512) {
+    iris::renderer::options o;
+    o.preset = preset;
+    o.spp = spp;
+    o.width = w;
+    o.height = h;
+    o.seed = seed;
+    o.threads = threads;
+    o.nthold = nthold;
+    rendered r;
+    r.status = iris::renderer::render(s, o, r.film);
+    return r;
+}
+
+bool identical(const iris::film& a, const iris::film& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(a.width() * a.height()); ++i) {
+        const auto x = a.mean(i), y = b.mean(i);
+        if (x.x != y.x || x.y != y.y || x.z != y.z) return false;
+    }
+    return true;
+}
+
+TEST(Renderer, SameSeedSameImageWhateverTheThreadCount) {
+    const auto s = iris::scene::builtin_scene("falling-cubes");
+    const auto one = render(s, "paper", 4, 40, 30, 7, 1, 2);
+    const auto two = render(s, "paper", 4, 40, 30, 7, 2, 2);
+    const auto again = render(s, "paper", 4, 40, 30, 7, 2, 2);
+    EXPECT_TRUE(identical(one.film, two.film));
+    EXPECT_TRUE(identical(two.film, again.film));
+    EXPECT_EQ(one.status.rays, two.status.rays);
+    const auto other = render(s, "paper", 4, 40, 30, 8, 2, 2);
+    EXPECT_FALSE(identical(two.film, other.film));  // the seed matters
+}
+
+TEST(Renderer, EveryPresetRendersEveryBuiltInSceneWithoutNonFiniteSamples) {
+    for (const auto& info : iris::scene::builtin_scenes()) {
+        const auto s = iris::scene::builtin_scene(info.name);
+        for (const auto& p : iris::renderer::preset_names()) {
+            const auto r = render(s, p, 2, 12, 10, 3, 2, 1);
+            EXPECT_EQ(r.status.spp_done, 2) << info.name << " " << p;
+            EXPECT_EQ(r.status.nan_inf, 0u) << info.name << " " << p;
+            EXPECT_GT(r.status.rays, 0u);
+        }
+    }
+}
+
+TEST(Renderer, FeatureSummaryPicksTheInstantiation) {
+    const auto furnace = render(iris::scene::builtin_scene("furnace"), "hwss", 1, 4, 4);
+    EXPECT_FALSE(furnace.status.dispersive_instantiation);
+    const auto cubes = render(iris::scene::builtin_scene("falling-cubes"), "hwss", 1, 4, 4);
+    EXPECT_TRUE(cubes.status.dispersive_instantiation);
+}
+
+TEST(Renderer, CancelStopsAfterACompletePass) {
+    const auto s = iris::scene::builtin_scene("cornell");
+    iris::renderer::options o;
+    o.spp = 100;
+    o.width = 8;
+    o.height = 8;
+    std::atomic<bool> cancel{false};
+    iris::renderer::hooks h;
+    h.cancel = &cancel;
+    h.on_pass = [&](const iris::film&, const iris::renderer::status& st) {
+        if (st.spp_done == 3) cancel = true;
+        return true;
+    };
+    iris::film f(1, 1);
+    const auto st = iris::renderer::render(s, o, f, h);
+    EXPECT_TRUE(st.interrupted);
+    EXPECT_EQ(st.spp_done, 3);
+    for (std::size_t i = 0; i < 64; ++i) EXPECT_EQ(f.samples(i), 3u);
+}
+
+TEST(Renderer, BadOptionsAreRejectedWithTheAcceptedValues) {
+    const auto s = iris::scene::builtin_scene("cornell");
+    iris::film f(1, 1);
+    iris::renderer::options o;
+    o.preset = "no-such-preset";
+    try {
+        iris::renderer::render(s, o, f);
+        FAIL();
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("paper"), std::string::npos) << e.what();
+    }
+    o.preset = "hwss";
+    o.spp = 0;
+    EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
+    o.spp = 1;
+    o.nthold = 0;
+    EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
+    o.nthold = 1;
+    o.width = -3;
+    o.height = 4;
+    EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
+}
+
+TEST(Renderer, ExtremeIorsAndGrazingCamerasStayFinite) {
+    auto s = iris::scene::builtin_scene("falling-cubes");
+    for (double eta : {1.0, 4.0}) {
+        for (auto& m : s.materials)
+            if (auto* d = std::get_if<iris::material::dielectric>(&m)) d->ior = iris::constant_ior{eta};
+        const auto r = render(s, "paper", 2, 16, 12);
+        EXPECT_EQ(r.status.nan_inf, 0u) << "eta " << eta;
+    }
+    // grazing: camera almost in the floor's plane, looking along it
+    auto g = iris::scene::builtin_scene("cornell");
+    g.camera.look_at = g.camera.position + glm::vec3(0.0f, -1e-4f, -1.0f);
+    const auto r = render(g, "paper", 2, 16, 12);
+    EXPECT_EQ(r.status.nan_inf, 0u);
+}
+
+}  // namespace
