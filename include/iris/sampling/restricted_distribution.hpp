@@ -19,7 +19,7 @@
 ///   sample then has r_α = 0, so F_R = 0 and the B term carries everything;
 /// - p has no mass on Λ (an emitter that is dark there): p is taken as uniform on Λ and
 ///   `base_fallback()` is true;
-/// - a cell whose density would underflow a float gets no mass (never sampled).
+/// - a cell whose density would underflow (or overflow) a float gets no mass.
 /// For a box kernel every sample has r_α = 1. For a smooth kernel a sample can land where
 /// r_α, evaluated in float, has underflowed to 0 (a Gaussian's far tail, or most of a
 /// cell when σ is far below the cell size): it then contributes r f / p_α = 0, its true
@@ -197,8 +197,10 @@ private:
             for (std::size_t i = 0; i < m_n; ++i) {
                 const double d = m_cdf[i + 1] - m_cdf[i];
                 const double w = static_cast<double>(m_right[i]) - static_cast<double>(m_left[i]);
-                m_density[i] = static_cast<float>(d / w);
-                if (m_scale[i] > 0.0 && !(m_density[i] > 0.0f)) {
+                const double density = d / w;
+                // beyond float range either way (only rounding noise on a sliver of a cell
+                // can overflow): no mass
+                if (m_scale[i] > 0.0 && !(density < 3.0e38 && static_cast<float>(density) > 0.0f)) {
                     m_scale[i] = 0.0;
                     dropped = true;
                 }

@@ -71,13 +71,13 @@ public:
 
     /// \brief All bins' wavelengths for jitter u, with pdf(b) = 1/Δλ_b (so the B term reads
     /// Σ_b (1 − r) f / pdf(b) like any Monte Carlo sum). Needs B ≥ count(): entries past
-    /// count() get λ = λmax and pdf 0 (they contribute nothing); if B < count() the bins
+    /// count() get λ = λmax (0 without bins) and pdf 0 (they contribute nothing); if B < count() the bins
     /// past B are missing and B is biased — check `fits<B>()` once, outside the hot path.
     template <std::size_t B>
     constexpr sampled_wavelengths<B> jittered(float u) const noexcept {
         sampled_wavelengths<B> wl;
         for (std::size_t b = 0; b < B; ++b) {
-            wl.lambda(b) = b < m_count ? lambda(b, u) : m_domain.max_nm;
+            wl.lambda(b) = b < m_count ? lambda(b, u) : padding();
             wl.pdf(b) = b < m_count ? static_cast<float>(1.0 / width(b)) : 0.0f;
         }
         return wl;
@@ -90,11 +90,15 @@ public:
     /// \brief Runtime form: fills min(count(), lambdas.size()) wavelengths and, if `pdfs`
     /// is not empty, their pdfs 1/Δλ_b (entries past count(): λmax and pdf 0).
     constexpr void fill(float u, std::span<float> lambdas, std::span<float> pdfs) const noexcept {
-        for (std::size_t b = 0; b < lambdas.size(); ++b) lambdas[b] = b < m_count ? lambda(b, u) : m_domain.max_nm;
+        for (std::size_t b = 0; b < lambdas.size(); ++b) lambdas[b] = b < m_count ? lambda(b, u) : padding();
         for (std::size_t b = 0; b < pdfs.size(); ++b) pdfs[b] = b < m_count ? static_cast<float>(1.0 / width(b)) : 0.0f;
     }
 
 private:
+    /// \brief λ for entries past count(): λmax, or 0 when there are no bins (an invalid
+    /// domain may hold NaN, and even a zero-weight NaN poisons a product).
+    constexpr float padding() const noexcept { return m_count > 0 ? m_domain.max_nm : 0.0f; }
+
     spectral_domain m_domain{};
     std::size_t m_count = 0;
     double m_width = default_width_nm;
