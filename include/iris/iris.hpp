@@ -10,6 +10,7 @@
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/ior.hpp"
 #include "iris/spectrum/named.hpp"
+#include "iris/spectrum/rgb_upsampling.hpp"
 #include "iris/spectrum/sampled.hpp"
 #include "iris/spectrum/spectrum.hpp"
 #include "iris/spectrum/tabulated.hpp"

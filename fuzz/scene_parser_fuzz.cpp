@@ -1,0 +1,36 @@
+// Fuzz target: the scene-file parser (iris::scene_document, no CGAL) on arbitrary bytes.
+// Properties: parsing either succeeds or throws iris::scene::error (never another
+// exception, never a crash); an error names the source; a parsed scene has shapes, a
+// light, material and emitter indices in range and finite, non-negative emission.
+#include <cmath>
+#include <cstdint>
+#include <string_view>
+
+#include <iris/scene/document.hpp>
+
+#include "fuzz_input.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    try {
+        const auto doc = iris::scene::parse_scene_document(text, "fuzz.json", "/nonexistent-iris-fuzz-dir");
+        const auto& s = doc.desc;
+        if (doc.shapes.empty()) iris::fuzz::fail("a scene without shapes was accepted");
+        if (s.emitters.empty() && !s.environment) iris::fuzz::fail("a scene without light was accepted");
+        if (doc.emitters.size() != s.emitters.size()) iris::fuzz::fail("emitter specs out of step");
+        if (s.materials.size() != s.material_names.size()) iris::fuzz::fail("material names out of step");
+        for (const auto& sh : doc.shapes) {
+            if (sh.material >= s.materials.size()) iris::fuzz::fail("material index out of range");
+            if (sh.emitter && *sh.emitter >= s.emitters.size()) iris::fuzz::fail("emitter index out of range");
+        }
+        for (const auto& e : s.emitters)
+            for (const double v : e.radiance.values())
+                if (!std::isfinite(v) || v < 0.0) iris::fuzz::fail("non-finite or negative emission");
+        if (!(s.camera.fov_y_degrees > 0.0f && s.camera.fov_y_degrees < 180.0f)) iris::fuzz::fail("bad fov accepted");
+        if (s.camera.width < 1 || s.camera.height < 1) iris::fuzz::fail("bad resolution accepted");
+        (void)s.features();
+    } catch (const iris::scene::error& e) {
+        if (e.file() != "fuzz.json") iris::fuzz::fail("an error that does not name the file");
+    }
+    return 0;
+}

@@ -1,0 +1,49 @@
+#pragma once
+/// \file
+/// \brief `iris::scene::error`: what is wrong with a scene, and where.
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace iris::scene {
+
+/// \brief Bad scene input. `what()` reads `FILE:LINE: POINTER: MESSAGE`, e.g.
+/// `falling.json:12: materials/glass/ior: unknown glass 'BK-7'; expected one of N-BK7, …`
+/// (the line is left out when unknown, the pointer when the error is about the whole file).
+class error : public std::runtime_error {
+public:
+    /// \param file    the scene's name as the user gave it (path or `builtin:NAME`)
+    /// \param line    1-based line of the offending value, 0 if unknown
+    /// \param pointer JSON pointer of the offending value (RFC 6901, e.g. `/camera/fov`), or ""
+    error(std::string file, std::size_t line, std::string pointer, std::string message)
+        : std::runtime_error(format(file, line, pointer, message)),
+          m_file(std::move(file)),
+          m_line(line),
+          m_pointer(std::move(pointer)),
+          m_message(std::move(message)) {}
+
+    const std::string& file() const noexcept { return m_file; }
+    std::size_t line() const noexcept { return m_line; }
+    const std::string& pointer() const noexcept { return m_pointer; }
+    /// \brief The message alone, without file, line and pointer.
+    const std::string& message() const noexcept { return m_message; }
+
+private:
+    static std::string format(const std::string& file, std::size_t line, const std::string& pointer,
+                              const std::string& message) {
+        std::string s = file.empty() ? std::string("<scene>") : file;
+        if (line > 0) s += ":" + std::to_string(line);
+        s += ": ";
+        // shown without the leading '/', which reads better in a message
+        if (!pointer.empty()) s += pointer.substr(pointer.front() == '/' ? 1 : 0) + ": ";
+        return s + message;
+    }
+
+    std::string m_file;
+    std::size_t m_line;
+    std::string m_pointer;
+    std::string m_message;
+};
+
+}  // namespace iris::scene

@@ -1,0 +1,422 @@
+// JSON text → scene_document: every check of docs/scene-format.md that does not need
+// the geometry. Reading order: spectral domain (the IOR checks need it), camera,
+// materials, named emitters, environment, shapes; then whole-scene checks.
+#include "iris/scene/document.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <system_error>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "iris/spectrum/color.hpp"
+#include "reader.hpp"
+#include "spectra.hpp"
+
+namespace iris::scene {
+
+std::string_view shape_type_name(shape_type t) noexcept {
+    switch (t) {
+        case shape_type::box: return "box";
+        case shape_type::cube: return "cube";
+        case shape_type::prism: return "prism";
+        case shape_type::hollow_cube: return "hollow_cube";
+        case shape_type::quad: return "quad";
+        case shape_type::mesh: return "mesh";
+    }
+    return "?";
+}
+
+namespace {
+
+using detail::describe;
+using detail::join;
+using detail::json;
+using detail::reader;
+using detail::source_context;
+
+constexpr double max_coordinate = 1e6;  ///< |x| of positions and sizes, in scene units
+constexpr long long max_resolution = 16384;
+constexpr double max_luminance = 1e12;
+constexpr double max_power = 1e15;
+
+constexpr std::array shape_types{shape_type::box,         shape_type::cube, shape_type::prism,
+                                 shape_type::hollow_cube, shape_type::quad, shape_type::mesh};
+
+glm::vec3 read_point(const reader& r, std::string_view what) {
+    r.expect_array(3, what);
+    glm::vec3 v;
+    for (glm::length_t i = 0; i < 3; ++i)
+        v[i] = static_cast<float>(r.at(static_cast<std::size_t>(i)).number_in(-max_coordinate, max_coordinate, false, false, "a coordinate"));
+    return v;
+}
+
+float read_size(const reader& r) {
+    return static_cast<float>(r.number_in(0.0, max_coordinate, true, false, "a size"));
+}
+
+// ---- spectral domain and camera ------------------------------------------------------
+
+detail::domain read_domain(const reader& root) {
+    detail::domain d;
+    if (!root.has("spectral_domain")) return d;
+    const reader r = root.at("spectral_domain");
+    r.expect_array(2, "a spectral domain [min, max] in nm");
+    d.min = r.at(0).number_in(cie::cmf_lambda_min, cie::cmf_lambda_max, false, false, "a wavelength in nm");
+    d.max = r.at(1).number_in(cie::cmf_lambda_min, cie::cmf_lambda_max, false, false, "a wavelength in nm");
+    if (!(d.max - d.min >= 1.0))
+        r.fail("the spectral domain must span at least 1 nm (min < max), got [" + reader::shortest(d.min) + ", " +
+               reader::shortest(d.max) + "]");
+    return d;
+}
+
+pinhole_camera read_camera(const reader& root) {
+    const reader r = root.at("camera");
+    r.expect_object({"position", "look_at", "up", "fov", "resolution"}, "a camera object");
+    pinhole_camera c;
+    c.position = read_point(r.at("position"), "a position [x, y, z]");
+    c.look_at = read_point(r.at("look_at"), "a point [x, y, z]");
+    c.up = r.has("up") ? read_point(r.at("up"), "an up vector [x, y, z]") : glm::vec3(0.0f, 1.0f, 0.0f);
+    c.fov_y_degrees = r.has("fov") ? static_cast<float>(r.at("fov").number_in(0.0, 180.0, true, true,
+                                                                               "a vertical field of view in degrees"))
+                                   : 40.0f;
+    c.width = c.height = 256;
+    if (r.has("resolution")) {
+        const reader res = r.at("resolution");
+        res.expect_array(2, "a resolution [width, height]");
+        c.width = static_cast<int>(res.at(0).integer_in(1, max_resolution, "a width in pixels"));
+        c.height = static_cast<int>(res.at(1).integer_in(1, max_resolution, "a height in pixels"));
+    }
+    const glm::vec3 view = c.look_at - c.position;
+    const float len = glm::length(view);
+    if (!(len > 1e-6f * std::max(1.0f, glm::length(c.position))))
+        r.at("look_at").fail("the camera looks at its own position; look_at must differ from position");
+    const glm::vec3 side = glm::cross(view / len, c.up);
+    if (!(glm::length(side) > 1e-4f * glm::length(c.up)) || !(glm::length(c.up) > 0.0f))
+        r.at(r.has("up") ? "up" : "look_at").fail("the up vector must not be zero or parallel to the viewing direction");
+    return c;
+}
+
+// ---- materials and emitters -------------------------------------------------------------
+
+material_desc read_material(const reader& r, const detail::domain& d) {
+    if (!r.is_object()) r.fail("expected a material object, got " + describe(r.value()));
+    const std::string type = r.at("type").string();
+    if (type == "diffuse") {
+        r.expect_object({"type", "reflectance"});
+        return material::diffuse{detail::read_reflectance(r.at("reflectance"))};
+    }
+    if (type == "dielectric") {
+        r.expect_object({"type", "ior", "roughness"});
+        material::dielectric m;
+        m.ior = detail::read_ior(r.at("ior"), d);
+        if (r.has("roughness"))
+            m.roughness = static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness"));
+        return m;
+    }
+    if (type == "conductor" || type == "mirror") {
+        r.expect_object({"type", "reflectance"});
+        return material::conductor{r.has("reflectance") ? detail::read_reflectance(r.at("reflectance"))
+                                                        : tabulated_spectrum({360.0, 830.0}, {1.0, 1.0}, outside::clamp)};
+    }
+    r.at("type").fail("unknown material type '" + type + "'; expected one of diffuse, dielectric, conductor, mirror");
+}
+
+struct parsed_emitter {
+    emitter_desc desc;
+    emitter_spec spec;
+};
+
+parsed_emitter read_emitter(const reader& r, const std::string& name, const detail::domain& d) {
+    r.expect_object({"spd", "luminance", "power", "two_sided"}, "an emitter object");
+    if (r.has("luminance") && r.has("power"))
+        r.at("power").fail("give either 'luminance' or 'power', not both");
+    const reader spd_at = r.at("spd");
+    detail::named_spd spd = detail::read_spd(spd_at);
+    parsed_emitter e;
+    e.spec.name = name;
+    e.spec.pointer = r.pointer();
+    e.spec.line = r.context().locations.find(r.pointer());
+    e.desc.spd_name = spd.name;
+    e.desc.two_sided = r.has("two_sided") && r.at("two_sided").boolean();
+    const double in_domain = detail::integrate_over(spd.table, d);
+    if (!(in_domain > 0.0))
+        spd_at.fail("the spectrum '" + spd.name + "' is zero over the spectral domain [" + reader::shortest(d.min) +
+                    ", " + reader::shortest(d.max) + "] nm");
+    if (r.has("power")) {
+        const double w = r.at("power").number_in(0.0, max_power, true, false, "a radiant power in relative watts");
+        e.spec.power = w;
+        e.desc.radiance = spd.table.scaled(1.0 / in_domain);
+    } else {
+        const double y = r.has("luminance")
+                             ? r.at("luminance").number_in(0.0, max_luminance, true, false, "a luminance Y")
+                             : 1.0;
+        const double k = white_normalisation(spd.table);
+        if (!(k > 0.0) || !std::isfinite(k * y))
+            spd_at.fail("the spectrum '" + spd.name + "' has no luminance (its Y over 360-830 nm is 0), so it cannot "
+                        "be scaled to a luminance");
+        e.desc.radiance = spd.table.scaled(k * y);
+    }
+    return e;
+}
+
+std::optional<environment_desc> read_environment(const reader& root, const detail::domain& d) {
+    if (!root.has("environment")) return std::nullopt;
+    const reader r = root.at("environment");
+    r.expect_object({"spd", "luminance"}, "an environment object");
+    const reader spd_at = r.at("spd");
+    detail::named_spd spd = detail::read_spd(spd_at);
+    if (!(detail::integrate_over(spd.table, d) > 0.0))
+        spd_at.fail("the spectrum '" + spd.name + "' is zero over the spectral domain");
+    const double y = r.has("luminance") ? r.at("luminance").number_in(0.0, max_luminance, true, false, "a luminance Y") : 1.0;
+    const double k = white_normalisation(spd.table);
+    if (!(k > 0.0) || !std::isfinite(k * y)) spd_at.fail("the spectrum '" + spd.name + "' has no luminance");
+    return environment_desc{spd.name, spd.table.scaled(k * y)};
+}
+
+// ---- shapes -------------------------------------------------------------------------
+
+glm::mat4 read_transform(const reader& r) {
+    if (!r.is_array())
+        r.fail("expected a list of steps [{\"scale\": ...}, {\"rotate\": {...}}, {\"translate\": [...]}], got " +
+               describe(r.value()));
+    glm::mat4 m(1.0f);
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const reader step = r.at(i);
+        step.expect_object({"translate", "scale", "rotate"}, "a transform step");
+        if (step.size() != 1) step.fail("a transform step has exactly one of 'translate', 'scale', 'rotate'");
+        glm::mat4 s(1.0f);
+        if (step.has("translate")) {
+            s = glm::translate(glm::mat4(1.0f), read_point(step.at("translate"), "a translation [x, y, z]"));
+        } else if (step.has("scale")) {
+            const reader k = step.at("scale");
+            glm::vec3 v;
+            if (k.is_number()) {
+                v = glm::vec3(static_cast<float>(k.number_in(0.0, max_coordinate, true, false, "a scale factor")));
+            } else {
+                v = read_point(k, "a scale [x, y, z]");
+                for (glm::length_t c = 0; c < 3; ++c)
+                    if (!(std::fabs(v[c]) >= 1e-6f))
+                        k.at(static_cast<std::size_t>(c)).fail("a scale factor must not be 0 (|s| >= 1e-6)");
+            }
+            s = glm::scale(glm::mat4(1.0f), v);
+        } else {
+            const reader rot = step.at("rotate");
+            rot.expect_object({"axis", "degrees"}, "a rotation {\"axis\": [x, y, z], \"degrees\": D}");
+            const glm::vec3 axis = read_point(rot.at("axis"), "an axis [x, y, z]");
+            if (!(glm::length(axis) > 1e-6f)) rot.at("axis").fail("the rotation axis must not be zero");
+            const double deg = rot.at("degrees").number_in(-1e6, 1e6, false, false, "an angle in degrees");
+            s = glm::rotate(glm::mat4(1.0f), static_cast<float>(glm::radians(deg)), glm::normalize(axis));
+        }
+        m = s * m;  // steps apply in the order listed
+    }
+    return m;
+}
+
+std::filesystem::path resolve_mesh(const reader& r, const std::filesystem::path& base_dir) {
+    const std::string name = r.string();
+    if (name.empty()) r.fail("expected a mesh file name, got an empty string");
+    std::filesystem::path p(name);
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext != ".obj" && ext != ".ply" && ext != ".off")
+        r.fail("unsupported mesh format '" + p.extension().string() + "' of '" + name + "'; expected .obj, .ply or .off");
+    if (p.is_relative()) p = base_dir / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec))
+        r.fail("mesh file '" + name + "' not found (looked for " + p.lexically_normal().string() + ")");
+    return p;
+}
+
+shape_type read_shape_type(const reader& r) {
+    const std::string t = r.string();
+    for (const auto s : shape_types)
+        if (shape_type_name(s) == t) return s;
+    std::vector<std::string_view> names;
+    for (const auto s : shape_types) names.push_back(shape_type_name(s));
+    r.fail("unknown shape type '" + t + "'; expected one of " + join(names));
+}
+
+}  // namespace
+
+scene_document parse_scene_document(std::string_view text, const std::string& source_name,
+                                    const std::filesystem::path& base_dir) {
+    source_context ctx;
+    ctx.name = source_name;
+    json root;
+    try {
+        root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const nlohmann::json::parse_error& e) {
+        // e.byte is 1-based: the position of the character that broke the syntax
+        const auto p = detail::position_of(text, e.byte > 0 ? e.byte - 1 : 0);
+        std::string msg = e.what();
+        // "[json.exception.parse_error.101] parse error at line 2, column 7: syntax error while …"
+        if (const auto colon = msg.find(": "); colon != std::string::npos && msg.rfind("[json.", 0) == 0)
+            msg = msg.substr(colon + 2);
+        throw error(source_name, p.line, "", msg + " (column " + std::to_string(p.column) + ")");
+    } catch (const nlohmann::json::exception& e) {
+        // number overflow ("number overflow parsing '1e999'") carries no position: find the literal
+        std::string msg = e.what();
+        std::size_t line = 0;
+        if (const auto q = msg.find('\''); q != std::string::npos) {
+            const auto q2 = msg.find('\'', q + 1);
+            if (q2 != std::string::npos) {
+                const auto at = text.find(std::string_view(msg).substr(q + 1, q2 - q - 1));
+                if (at != std::string_view::npos) line = detail::position_of(text, at).line;
+            }
+        }
+        if (const auto b = msg.find("] "); b != std::string::npos) msg = msg.substr(b + 2);
+        throw error(source_name, line, "", msg + " (a number outside the range of a double)");
+    }
+    ctx.locations = detail::locate_json_values(text);
+    if (!ctx.locations.duplicates.empty()) {
+        const auto& d = ctx.locations.duplicates.front();
+        throw error(source_name, d.line, d.pointer.substr(0, d.pointer.rfind('/')),
+                    "duplicate key '" + d.pointer.substr(d.pointer.rfind('/') + 1) + "'");
+    }
+
+    const reader top(root, "", ctx);
+    top.expect_object({"name", "description", "spectral_domain", "camera", "materials", "emitters", "environment", "shapes"},
+                      "a scene object {\"camera\": ..., \"materials\": ..., \"shapes\": [...]}");
+
+    scene_document doc;
+    doc.source = source_name;
+    scene_desc& s = doc.desc;
+    s.name = top.has("name") ? top.at("name").string() : std::filesystem::path(source_name).stem().string();
+    if (s.name.empty()) top.at("name").fail("the scene name must not be empty");
+    if (top.has("description")) doc.description = top.at("description").string();
+
+    const detail::domain dom = read_domain(top);
+    s.lambda_min = static_cast<float>(dom.min);
+    s.lambda_max = static_cast<float>(dom.max);
+    s.camera = read_camera(top);
+
+    // materials: an object, name → material; indices follow the file's order
+    std::map<std::string, std::uint32_t> material_index;
+    if (top.has("materials")) {
+        const reader mats = top.at("materials");
+        if (!mats.is_object()) mats.fail("expected an object of named materials, got " + describe(mats.value()));
+        for (const auto& [name, v] : mats.value().items()) {
+            if (name.empty()) mats.fail("a material name must not be empty");
+            s.materials.push_back(read_material(mats.at(name), dom));
+            s.material_names.push_back(name);
+            material_index[name] = static_cast<std::uint32_t>(s.materials.size() - 1);
+        }
+    }
+
+    // named emitters: parsed now, kept only if a shape uses them (in order of first use)
+    std::map<std::string, parsed_emitter> named;
+    std::vector<std::string> named_order;
+    if (top.has("emitters")) {
+        const reader ems = top.at("emitters");
+        if (!ems.is_object()) ems.fail("expected an object of named emitters, got " + describe(ems.value()));
+        for (const auto& [name, v] : ems.value().items()) {
+            if (name.empty()) ems.fail("an emitter name must not be empty");
+            named.emplace(name, read_emitter(ems.at(name), name, dom));
+            named_order.push_back(name);
+        }
+    }
+    std::map<std::string, std::uint32_t> used_named;
+
+    s.environment = read_environment(top, dom);
+
+    if (!top.has("shapes")) top.fail("missing key 'shapes' (the list of shapes); an empty scene cannot be rendered");
+    const reader shapes = top.at("shapes");
+    if (!shapes.is_array()) shapes.fail("expected an array of shapes, got " + describe(shapes.value()));
+    if (shapes.size() == 0) shapes.fail("the scene is empty: 'shapes' has no shapes");
+
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        const reader r = shapes.at(i);
+        if (!r.is_object()) r.fail("expected a shape object, got " + describe(r.value()));
+        shape_spec sh;
+        sh.type = read_shape_type(r.at("type"));
+        sh.pointer = r.pointer();
+        sh.line = ctx.locations.find(r.pointer());
+        switch (sh.type) {
+            case shape_type::box:
+                r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "size"});
+                sh.size = read_point(r.at("size"), "a size [x, y, z]");
+                for (glm::length_t c = 0; c < 3; ++c)
+                    if (!(sh.size[c] > 0.0f)) r.at("size").at(static_cast<std::size_t>(c)).fail("expected a size > 0, got " + reader::shortest(sh.size[c]));
+                break;
+            case shape_type::cube:
+                r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "size"});
+                sh.size = glm::vec3(read_size(r.at("size")));
+                break;
+            case shape_type::quad: {
+                r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "size"});
+                const reader sz = r.at("size");
+                sz.expect_array(2, "a size [x, z]");
+                sh.size = glm::vec3(read_size(sz.at(0)), 0.0f, read_size(sz.at(1)));
+                break;
+            }
+            case shape_type::prism:
+                r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "side", "length"});
+                sh.size = glm::vec3(read_size(r.at("side")), 0.0f, read_size(r.at("length")));
+                break;
+            case shape_type::hollow_cube: {
+                r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "size", "wall"});
+                sh.size = glm::vec3(read_size(r.at("size")));
+                const reader w = r.at("wall");
+                sh.wall = read_size(w);
+                if (!(sh.wall < 0.5f * sh.size.x))
+                    w.fail("expected a wall thickness below half the size (" + reader::shortest(0.5 * sh.size.x) +
+                           "), got " + reader::shortest(sh.wall));
+                break;
+            }
+            case shape_type::mesh:
+                r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "file"});
+                sh.file = resolve_mesh(r.at("file"), base_dir);
+                break;
+        }
+        sh.name = r.has("name") ? r.at("name").string()
+                                : std::string(shape_type_name(sh.type)) + "." + std::to_string(i);
+        if (r.has("transform")) sh.transform = read_transform(r.at("transform"));
+        if (r.has("flip")) sh.flip = r.at("flip").boolean();
+
+        const reader m = r.at("material");
+        const std::string mname = m.string();
+        const auto mi = material_index.find(mname);
+        if (mi == material_index.end())
+            m.fail("unknown material '" + mname + "'; " +
+                   (s.material_names.empty() ? std::string("the scene defines no materials")
+                                             : "expected one of " + join(s.material_names)));
+        sh.material = mi->second;
+
+        if (r.has("emitter")) {
+            const reader e = r.at("emitter");
+            if (e.is_string()) {
+                const std::string ename = e.string();
+                if (const auto u = used_named.find(ename); u != used_named.end()) {
+                    sh.emitter = u->second;
+                } else {
+                    const auto it = named.find(ename);
+                    if (it == named.end())
+                        e.fail("unknown emitter '" + ename + "'; " +
+                               (named_order.empty() ? std::string("the scene defines no \"emitters\"")
+                                                    : "expected one of " + join(named_order)) +
+                               " (or an inline emitter object)");
+                    s.emitters.push_back(it->second.desc);
+                    doc.emitters.push_back(it->second.spec);
+                    sh.emitter = used_named[ename] = static_cast<std::uint32_t>(s.emitters.size() - 1);
+                }
+            } else {
+                parsed_emitter pe = read_emitter(e, sh.name, dom);
+                s.emitters.push_back(std::move(pe.desc));
+                doc.emitters.push_back(std::move(pe.spec));
+                sh.emitter = static_cast<std::uint32_t>(s.emitters.size() - 1);
+            }
+        }
+        doc.shapes.push_back(std::move(sh));
+    }
+
+    if (s.emitters.empty() && !s.environment)
+        ctx.fail_at("/shapes", "",
+                    "the scene has no emitter: give a shape an \"emitter\" or add an \"environment\"");
+    return doc;
+}
+
+}  // namespace iris::scene

@@ -1,0 +1,36 @@
+#pragma once
+/// \file
+/// \brief Reading the spectral parts of a scene file: reflectances, emission SPDs, IOR
+/// models (format: docs/scene-format.md).
+
+#include <string>
+
+#include "iris/render/scene.hpp"
+#include "iris/spectrum/tabulated.hpp"
+#include "reader.hpp"
+
+namespace iris::scene::detail {
+
+/// \brief The spectral domain [min, max] nm that checks and power integrals use.
+struct domain {
+    double min = 380.0, max = 780.0;
+};
+
+/// \brief A reflectance in [0, 1]: number, {"srgb"}, {"linear_srgb"} or a table.
+tabulated_spectrum read_reflectance(const reader& r);
+
+/// \brief An emission SPD and the name the feature summary reports for it.
+struct named_spd {
+    std::string name;
+    tabulated_spectrum table;
+};
+/// \brief An SPD: illuminant name, "blackbody:K", {"blackbody": K} or a table.
+named_spd read_spd(const reader& r);
+
+/// \brief An IOR model; n(λ) is checked to be finite and in [1, 10] over `d`.
+ior_model read_ior(const reader& r, const domain& d);
+
+/// \brief ∫ s(λ) dλ over the domain by 1 nm trapezoids (the light sampler's rule).
+double integrate_over(const tabulated_spectrum& s, const domain& d) noexcept;
+
+}  // namespace iris::scene::detail
