@@ -343,6 +343,19 @@ TEST(Distribution, GaussianHasTheAreaOfTheBox) {
     EXPECT_NEAR(g.normalisation(), 20.0f / 400.0f, 1e-6f);
 }
 
+TEST(Distribution, MasslessCellsGetNoRoundingCrumbs) {
+    // a 1e-3 nm Gaussian on a cell edge: exactly the two cells beside it hold mass; the
+    // cumulative sum must not hand its last rounding error to a massless cell at the end
+    const restricted_distribution d(iris::test::dark_bands(), restriction::gaussian{550.0f, 1e-3f}, 0.0f);
+    std::vector<std::size_t> with_mass;
+    for (std::size_t i = 0; i < d.cell_count(); ++i)
+        if (d.cell_density(i) > 0.0f) with_mass.push_back(i);
+    ASSERT_EQ(with_mass.size(), 2u);
+    EXPECT_EQ(d.cell(with_mass[0]).hi, 550.0f);
+    EXPECT_EQ(d.cell(with_mass[1]).lo, 550.0f);
+    EXPECT_EQ(d.pdf(779.5f), 0.0f);
+}
+
 TEST(Distribution, WidthZeroBoxIsANarrowWindow) {
     const restricted_distribution d(spectral_pdf::visible{}, restriction::box{600.0f, 0.0f}, 0.0f);
     ASSERT_FALSE(d.restricted_fallback());

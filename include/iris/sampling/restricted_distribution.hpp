@@ -181,37 +181,46 @@ private:
             m_z = static_cast<float>(std::min(z, 1.0));
         }
 
-        // cumulative masses, ending at exactly 1. A cell whose density would underflow a
-        // float (a Gaussian's far tail) gets no mass: sampling it would return pdf 0.
+        // cumulative masses, ending at exactly 1, with each cell's density and inverse CDF
+        // slope. A cell whose density would underflow (or overflow) a float gets no mass:
+        // sampling it would return pdf 0. Dropping such cells renormalises the others,
+        // which only raises their densities, so a second pass always settles it.
         for (int pass = 0; pass < 2; ++pass) {
             double sum = 0.0;
             for (std::size_t i = 0; i < m_n; ++i) sum += m_scale[i];
+            const double inv_sum = 1.0 / sum;
             double acc = 0.0;
+            bool dropped = false;
+            std::size_t last = 0;  // one past the last cell with mass
             m_cdf[0] = 0.0;
             for (std::size_t i = 0; i < m_n; ++i) {
                 acc += m_scale[i];
-                m_cdf[i + 1] = std::min(1.0, acc / sum);
+                m_cdf[i + 1] = std::min(1.0, acc * inv_sum);
+                if (m_scale[i] > 0.0) last = i + 1;
             }
-            m_cdf[m_n] = 1.0;
-            bool dropped = false;
+            // exactly 1 from the last cell with mass on: massless cells at the end get no
+            // rounding crumbs (they would be sampled with pdf ≈ 1e-16 where p_α = 0)
+            for (std::size_t i = last; i <= m_n; ++i) m_cdf[i] = 1.0;
             for (std::size_t i = 0; i < m_n; ++i) {
                 const double d = m_cdf[i + 1] - m_cdf[i];
                 const double w = static_cast<double>(m_right[i]) - static_cast<double>(m_left[i]);
                 const double density = d / w;
-                // beyond float range either way (only rounding noise on a sliver of a cell
-                // can overflow): no mass
-                if (m_scale[i] > 0.0 && !(density < 3.0e38 && static_cast<float>(density) > 0.0f)) {
-                    m_scale[i] = 0.0;
+                if (!(d > 0.0)) {
+                    m_density[i] = 0.0f;
+                } else if (density < 3.0e38 && static_cast<float>(density) > 0.0f) {
+                    m_density[i] = static_cast<float>(density);
+                } else {
+                    m_density[i] = 0.0f;
                     dropped = true;
                 }
             }
             if (!dropped) break;
+            for (std::size_t i = 0; i < m_n; ++i)
+                if (m_density[i] == 0.0f) m_scale[i] = 0.0;
         }
         for (std::size_t i = 0; i < m_n; ++i) {
             const double d = m_cdf[i + 1] - m_cdf[i];
-            const double w = static_cast<double>(m_right[i]) - static_cast<double>(m_left[i]);
-            m_density[i] = d > 0.0 ? static_cast<float>(d / w) : 0.0f;
-            m_scale[i] = d > 0.0 ? w / d : 0.0;
+            m_scale[i] = d > 0.0 ? (static_cast<double>(m_right[i]) - static_cast<double>(m_left[i])) / d : 0.0;
         }
 
         // grid cell k → first cell whose right edge reaches the grid cell's left edge
@@ -238,28 +247,43 @@ private:
         double mass_sum = 0.0;
         float x0 = a;
         double p0 = primitive(static_cast<double>(x0));
+        [[maybe_unused]] auto e0 = edge_of(x0);
         const double first = std::floor((static_cast<double>(a) - lo) * m_inv_h) + 1.0;
         std::size_t k = first > 0.0 ? static_cast<std::size_t>(first) : 0;
+        std::size_t n = m_n;  // a local count: the member would be stored back every cell
         for (;; ++k) {
             const double node = k >= m_grid ? static_cast<double>(m_domain.max_nm) : lo + static_cast<double>(k) * m_h;
             const bool last = !(node < static_cast<double>(b));
             const float x1 = last ? b : static_cast<float>(node);
-            if (x1 > x0 && m_n < max_cells) {
+            if (x1 > x0 && n < max_cells) {
                 const double p1 = primitive(static_cast<double>(x1));
                 double m = std::max(0.0, p1 - p0) * m_inv_base_total;
-                if (weigh) m *= m_r.average(x0, x1);
+                if constexpr (EdgeAveragedRestriction<bound_type>) {
+                    const auto e1 = m_r.edge_at(x1);
+                    if (weigh) m *= m_r.average(e0, e1);
+                    e0 = e1;
+                } else {
+                    if (weigh) m *= m_r.average(x0, x1);
+                }
                 if (!(m < 1e300)) m = 0.0;  // NaN from a broken model: a massless cell
-                m_left[m_n] = x0;
-                m_right[m_n] = x1;
-                m_scale[m_n] = m;  // the cell's mass until build() turns it into the scale
-                ++m_n;
+                m_left[n] = x0;
+                m_right[n] = x1;
+                m_scale[n] = m;  // the cell's mass until build() turns it into the scale
+                ++n;
                 mass_sum += m;
                 x0 = x1;
                 p0 = p1;
             }
             if (last) break;
         }
+        m_n = n;
         return mass_sum;
+    }
+
+    /// \brief The kernel's edge value at x when it has one (else nothing to carry).
+    auto edge_of(float x) const noexcept {
+        if constexpr (EdgeAveragedRestriction<bound_type>) return m_r.edge_at(x);
+        else return 0;
     }
 
     std::size_t start_cell(float lambda_nm) const noexcept {

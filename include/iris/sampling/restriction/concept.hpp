@@ -98,6 +98,16 @@ concept BoundRestriction = std::copyable<B> && requires(const B& b, float lambda
     { B::indicator } -> std::convertible_to<bool>;
 };
 
+/// \brief Optional, for speed: a bound kernel whose cell means come from values at the
+/// cell edges (`b.edge_at(x)` → `B::edge`, `b.average(e0, e1)` → double, equal to
+/// `b.average(lo, hi)`), so a distribution evaluates the expensive part once per edge
+/// instead of twice per cell (the Gaussian's erfc).
+template <class B>
+concept EdgeAveragedRestriction = BoundRestriction<B> && requires(const B& b, float x, const typename B::edge& e) {
+    { b.edge_at(x) } -> std::same_as<typename B::edge>;
+    { b.average(e, e) } -> std::same_as<double>;
+};
+
 template <class K>
 concept RestrictionKernel = std::copyable<K> && requires(const K& k, float alpha, const spectral_domain& d) {
     { K::name } -> std::convertible_to<std::string_view>;

@@ -33,6 +33,8 @@ struct gaussian {
         double centre = 0.0;
         double inv_two_sigma2 = 0.0;  ///< 1 / 2σ(α)²
         double floor = 1.0;           ///< s(α)
+        double inv_sigma_sqrt2 = 0.0; ///< 1 / (σ√2)
+        double half_sqrt_pi_sigma_sqrt2 = 0.0;  ///< σ√(π/2): ∫g over a half line
         interval_set<1> domain;
         float operator()(float lambda_nm) const noexcept {
             if (floor >= 1.0) return 1.0f;
@@ -41,21 +43,30 @@ struct gaussian {
             const double r = g + floor * (1.0 - g);
             return r >= 1.0 ? 1.0f : (r > 0.0 ? static_cast<float>(r) : 0.0f);
         }
-        /// \brief Exact mean of r over [a, b]: s + (1 − s) ∫g / (b − a), the Gaussian's
-        /// integral from erfc on each side of the centre (no cancellation in the tails).
-        double average(float a, float b) const noexcept {
-            const double lo = static_cast<double>(a), hi = static_cast<double>(b);
-            if (!(hi > lo)) return 0.0;
+        /// \brief What the mean of r needs to know about one cell edge: the edge and the
+        /// Gaussian's tail beyond it, erfc(|x − c| / σ√2) (no cancellation in the tails).
+        struct edge {
+            double x = 0.0;
+            double tail = 0.0;
+        };
+        edge edge_at(float x) const noexcept {
+            const double xd = static_cast<double>(x);
+            return {xd, floor >= 1.0 ? 0.0 : std::erfc(std::fabs(xd - centre) * inv_sigma_sqrt2)};
+        }
+        /// \brief Exact mean of r between two edges: s + (1 − s) ∫g / (b − a), with ∫g from
+        /// the tails on each side of the centre.
+        double average(const edge& a, const edge& b) const noexcept {
+            if (!(b.x > a.x)) return 0.0;
             if (floor >= 1.0) return 1.0;
-            const double k = 1.0 / std::sqrt(inv_two_sigma2);  // σ√2
-            const double tl = std::erfc(std::fabs(lo - centre) / k), th = std::erfc(std::fabs(hi - centre) / k);
             double half_integral;  // ∫g / (σ√(π/2))
-            if (lo >= centre) half_integral = tl - th;
-            else if (hi <= centre) half_integral = th - tl;
-            else half_integral = 2.0 - tl - th;
-            const double mean_g = std::max(0.0, half_integral) * 0.5 * k * std::sqrt(std::numbers::pi) / (hi - lo);
+            if (a.x >= centre) half_integral = a.tail - b.tail;
+            else if (b.x <= centre) half_integral = b.tail - a.tail;
+            else half_integral = 2.0 - a.tail - b.tail;
+            const double mean_g = std::max(0.0, half_integral) * half_sqrt_pi_sigma_sqrt2 / (b.x - a.x);
             return std::min(1.0, mean_g + floor * (1.0 - std::min(1.0, mean_g)));
         }
+        /// \brief Exact mean of r over [a, b].
+        double average(float a, float b) const noexcept { return average(edge_at(a), edge_at(b)); }
         constexpr const interval_set<1>& support() const noexcept { return domain; }
     };
 
@@ -68,10 +79,12 @@ struct gaussian {
         const double sigma = s0 + a * width;
         interval_set<1> s;
         s.insert(d.min_nm, d.max_nm);
-        return {detail::sane_centre(centre_nm, d), 0.5 / (sigma * sigma), a, s.clipped(d)};
+        const double sigma_sqrt2 = sigma * std::numbers::sqrt2;
+        return {detail::sane_centre(centre_nm, d), 0.5 / (sigma * sigma), a, 1.0 / sigma_sqrt2,
+                0.5 * std::sqrt(std::numbers::pi) * sigma_sqrt2, s.clipped(d)};
     }
 };
 
-static_assert(RestrictionKernel<gaussian>);
+static_assert(RestrictionKernel<gaussian> && EdgeAveragedRestriction<gaussian::bound>);
 
 }  // namespace iris::restriction
