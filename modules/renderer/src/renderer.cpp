@@ -11,14 +11,14 @@
 #include "iris/render/camera.hpp"
 #include "iris/render/lights.hpp"
 #include "iris/sampling/presets.hpp"
-#include "iris/scene/intersector.hpp"
+#include "iris/renderer/embree_tracer.hpp"
 #include "render_loop.hpp"
 
 namespace iris::renderer {
 namespace {
 
 template <class Preset, bool Dispersive>
-void run(const scene_desc& scene, const scene::embree_intersector& tracer, const options& opt, film& f, status& st,
+void run(const scene_desc& scene, const embree_tracer& tracer, const options& opt, film& f, status& st,
          const hooks& h) {
     typename Preset::parameters params;
     params.n_thold = static_cast<std::uint32_t>(opt.nthold);
@@ -60,7 +60,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     const int w = opt.width > 0 ? opt.width : scene.camera.width;
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
-    const scene::embree_intersector tracer(scene);
+    const embree_tracer tracer(scene);
     out = film(w, ht);
     status st;
     st.config_name = config;
