@@ -42,8 +42,8 @@ TEST(RendererCore, WhiteFurnaceIsFiveForEveryPreset) {
         options o;
         o.preset = p.name;
         o.width = o.height = 16;
-        o.spp = 64;
-        o.nthold = 32;
+        o.spp = 256;  // enough power: se < 0.05 even for C = 1 after N_thold (192 samples)
+        o.nthold = 64;
         o.seed = 11;
         o.path.max_depth = 200;
         // unbiased presets count every sample (α from 0 to 1); the others only after N_thold (U2)
