@@ -309,7 +309,11 @@ private:
         std::size_t g = static_cast<std::size_t>(u * static_cast<double>(m_guide_n));
         if (g >= m_guide_n) g = m_guide_n - 1;
         std::size_t i = m_guide[g];
-        while (i + 1 < m_n && m_cdf[i + 1] <= u) ++i;
+        // m_cdf[m_n] = 1 > u ends every walk inside the table. The first step is branch-free:
+        // with equal masses (uniform p) guide buckets and cells share their edges up to
+        // rounding, so whether a step is needed is a coin flip a branch would mispredict.
+        i += static_cast<std::size_t>(m_cdf[i + 1] <= u);
+        while (m_cdf[i + 1] <= u) ++i;
         const float l = static_cast<float>(static_cast<double>(m_left[i]) + (u - m_cdf[i]) * m_scale[i]);
         return {std::clamp(l, m_left[i], m_right[i]), m_density[i]};
     }
