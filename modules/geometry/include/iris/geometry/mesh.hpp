@@ -1,50 +1,50 @@
 #pragma once
 /// \file
-/// \brief iris::geometry — closed triangle meshes for test scenes (CGAL-free header).
+/// \brief iris::geometry — closed triangle meshes: the CGAL-free mesh type, builders and
+/// loader (`triangle_mesh.hpp`, target `iris::geometry_mesh`) plus what needs CGAL's
+/// Polygon Mesh Processing: validity checks, the hollow cube (corefinement) and enclosed
+/// volumes (target `iris::geometry`).
 ///
-/// Every builder returns counter-clockwise triangles seen from outside (outward normals
-/// (v1 − v0) × (v2 − v0)); all but `make_quad` are closed 2-manifolds.
+/// CGAL is linked PRIVATE to `iris::geometry` and none of its headers appear here:
+/// including this header costs nothing extra and adds no `-frounding-math`.
 
-#include <array>
-#include <cstdint>
-#include <stdexcept>
-#include <vector>
+#include <string>
 
-#include <glm/mat4x4.hpp>
-#include <glm/vec3.hpp>
-
-#include "iris/render/scene.hpp"
+#include "iris/geometry/triangle_mesh.hpp"
 
 namespace iris::geometry {
 
-/// \brief The core's mesh type: positions and outward CCW index triples.
-using triangle_mesh = iris::triangle_mesh;
+/// \brief The result of `check_mesh`. The later properties need the earlier ones:
+/// self-intersection freedom is only decided for manifold meshes and orientation only for
+/// closed, manifold, self-intersection-free ones; a property that could not be decided
+/// is false and `detail` says why.
+struct mesh_check {
+    bool closed = false;                  ///< every edge has exactly two triangles
+    bool manifold = false;                ///< edge- and vertex-manifold, consistently oriented, no degenerate indices
+    bool outward = false;                 ///< normals point out of the bounded volume (nested shells alternate)
+    bool self_intersection_free = false;  ///< no two triangles intersect except at shared edges/vertices
+    std::string detail;                   ///< empty if ok(), else what failed first, with indices
 
-class error : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
+    /// \brief All four properties hold: a valid closed solid for the integrator.
+    bool ok() const noexcept { return closed && manifold && outward && self_intersection_free; }
 };
 
-/// \brief Axis-aligned box [min, max]. \throws error if any extent is not positive.
-triangle_mesh make_box(glm::vec3 min, glm::vec3 max);
-/// \brief Cube of edge `edge` centred at `centre`.
-triangle_mesh make_cube(glm::vec3 centre, float edge);
-/// \brief Triangular prism: an equilateral triangle of side `side` in the xy plane
-/// (one vertex pointing +y), centred at `centre`, extruded by `depth` along z.
-triangle_mesh make_prism(glm::vec3 centre, float side, float depth);
-/// \brief Hollow cube: outer cube minus a concentric inner cube (inner walls face inwards,
-/// into the cavity). \pre 0 < inner_edge < outer_edge.
-triangle_mesh make_hollow_cube(glm::vec3 centre, float outer_edge, float inner_edge);
-/// \brief An open rectangle (two triangles) centred at `centre` spanned by `u` and `v`
-/// (full edge vectors); its normal is u × v. Not closed: emitters, floors, screens.
-triangle_mesh make_quad(glm::vec3 centre, glm::vec3 u, glm::vec3 v);
+/// \brief Check a mesh with CGAL PMP (`orient_polygon_soup` for manifoldness,
+/// `is_closed`, `does_self_intersect`, `does_bound_a_volume` for orientation, which
+/// accepts nested shells such as the hollow cube's inward inner walls). Vertices with
+/// bitwise-equal positions are treated as one vertex, so a mesh that repeats corners per
+/// face is still closed. Invalid indices or non-finite positions give an all-false result.
+mesh_check check_mesh(const triangle_mesh& mesh);
 
-/// \brief Translate · rotate (degrees, applied about x, then y, then z) · scale.
-glm::mat4 make_transform(glm::vec3 translate, glm::vec3 rotate_degrees_xyz, glm::vec3 scale);
-/// \brief The mesh with every position transformed (orientation kept when det > 0, and
-/// restored by flipping the triangles when det < 0).
-triangle_mesh transformed(const triangle_mesh& m, const glm::mat4& t);
-/// \brief Total surface area.
-double surface_area(const triangle_mesh& m);
+/// \brief A cube with a cubic cavity: the axis-aligned cube (`outer_edge`) minus the
+/// concentric cube (`inner_edge`), computed by CGAL corefinement (`difference`). The inner
+/// walls face the cavity (outward from the solid); 16 vertices, 24 triangles.
+/// \throws error unless 0 < inner_edge < outer_edge.
+triangle_mesh make_hollow_cube(glm::vec3 centre, float outer_edge, float inner_edge);
+
+/// \brief The signed volume enclosed by a closed mesh (CGAL `volume`); positive for
+/// outward meshes, and a hollow solid counts its cavity negatively (a³ − b³).
+/// \throws error if the mesh is not closed and manifold.
+double enclosed_volume(const triangle_mesh& mesh);
 
 }  // namespace iris::geometry
