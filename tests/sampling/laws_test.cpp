@@ -168,6 +168,13 @@ TEST(Kernels, DegenerateParametersStayFinite) {
             ASSERT_TRUE(std::isfinite(b.average(380.0f, 780.0f)));
         }
     }
+    // nonsense domains (the distribution rejects them) still bind to finite windows
+    for (const spectral_domain bad : {spectral_domain{0.0f, 3e38f}, spectral_domain{-3e38f, 3e38f}, spectral_domain{nan, inf}}) {
+        const auto b = restriction::multi_box<3>{}.bind(0.5f, bad);
+        ASSERT_TRUE(std::isfinite(b(1.0f)));
+        const auto g = restriction::gaussian{}.bind(0.5f, bad);
+        ASSERT_TRUE(std::isfinite(g(1.0f)));
+    }
     // α NaN counts as 1: no restriction
     EXPECT_EQ(restriction::box{}.bind(nan, d)(400.0f), 1.0f);
 }

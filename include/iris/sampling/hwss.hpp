@@ -19,7 +19,7 @@
 
 namespace iris {
 
-/// \brief u_j = frac(u + j/C) in double (so it is never 1); u outside [0, 1) is clamped
+/// \brief u_j = frac(u + j/C) in double (so it is never 1), for C ≥ 1; u outside [0, 1) is clamped
 /// first (NaN → 0). The C values are stratified: exactly one falls in each [k/C, (k+1)/C).
 constexpr double hwss_rotation(float u, std::size_t j, std::size_t C) noexcept {
     double x = static_cast<double>(u);

@@ -74,12 +74,8 @@ public:
     /// \throws std::invalid_argument if `domain` is not valid (see spectral_domain::valid).
     restricted_distribution(const BasePdf& base, const Kernel& kernel, float alpha, spectral_domain domain = {},
                             float cell_nm = distribution_resolution::default_cell_nm)
-        : m_base(base), m_kernel(kernel), m_domain(domain), m_alpha(restriction::detail::clamp_alpha(alpha)),
-          m_r(kernel.bind(m_alpha, domain)) {
-        if (!domain.valid())
-            throw std::invalid_argument("restricted distribution: invalid spectral domain [" +
-                                        std::to_string(domain.min_nm) + ", " + std::to_string(domain.max_nm) +
-                                        "] nm (need 0 <= min, max <= 1e5, max - min >= 1e-3)");
+        : m_base(base), m_kernel(kernel), m_domain(checked(domain)), m_alpha(restriction::detail::clamp_alpha(alpha)),
+          m_r(kernel.bind(m_alpha, m_domain)) {
         build(cell_nm);
     }
 
@@ -146,6 +142,15 @@ public:
 
 private:
     static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+    /// \brief d, if valid (checked before the kernel is bound to it).
+    static spectral_domain checked(const spectral_domain& d) {
+        if (!d.valid())
+            throw std::invalid_argument("restricted distribution: invalid spectral domain [" + std::to_string(d.min_nm) +
+                                        ", " + std::to_string(d.max_nm) +
+                                        "] nm (need 0 <= min, max <= 1e5, max - min >= 1e-3)");
+        return d;
+    }
 
     double primitive(double x) const noexcept {
         return m_base_fallback ? x : m_base.primitive(x);

@@ -138,7 +138,8 @@ constexpr spectral_interval grow_window(double c, float w0, double share_lo, dou
     const double lo0 = c - 0.5 * w, hi0 = c + 0.5 * w, t = static_cast<double>(a);
     const double lo = lo0 > share_lo ? lo0 + t * (share_lo - lo0) : lo0;
     const double hi = hi0 < share_hi ? hi0 + t * (share_hi - hi0) : hi0;
-    return {static_cast<float>(lo), static_cast<float>(hi)};
+    // (within float range even on a nonsense domain: an out-of-range cast is undefined)
+    return {static_cast<float>(std::clamp(lo, -3.0e38, 3.0e38)), static_cast<float>(std::clamp(hi, -3.0e38, 3.0e38))};
 }
 
 /// \brief Mean over [lo, hi] of the indicator of the closed window w (overlap / length).
