@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -284,6 +286,29 @@ TEST(SceneDocument, TransformStepsApplyInTheOrderListed) {
     EXPECT_NEAR(p.x, 0.0f, 1e-6f);
     EXPECT_NEAR(p.y, 2.0f, 1e-6f);
     EXPECT_NEAR(p.z, 0.0f, 1e-6f);
+}
+
+}  // namespace
+
+namespace {
+
+// Every complete scene in docs/scene-format.md (a ```json block that starts with '{' and
+// has a "camera") must parse: the documentation cannot drift from the parser.
+TEST(SceneDocument, EveryCompleteExampleInTheDocsParses) {
+    std::ifstream in(IRIS_SCENE_FORMAT_DOC);
+    ASSERT_TRUE(in) << IRIS_SCENE_FORMAT_DOC;
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    const std::string doc = buffer.str();
+    std::size_t examples = 0;
+    for (std::size_t at = doc.find("```json\n"); at != std::string::npos; at = doc.find("```json\n", at + 1)) {
+        const std::size_t begin = at + 8, end = doc.find("```", begin);
+        const std::string block = doc.substr(begin, end - begin);
+        if (block.empty() || block.front() != '{' || block.find("\"camera\"") == std::string::npos) continue;
+        ++examples;
+        EXPECT_NO_THROW(parse_scene_document(block, "scene-format.md", {})) << block;
+    }
+    EXPECT_GE(examples, 1u);
 }
 
 }  // namespace

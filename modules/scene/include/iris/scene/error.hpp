@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace iris::scene {
 
@@ -32,12 +33,21 @@ public:
 private:
     static std::string format(const std::string& file, std::size_t line, const std::string& pointer,
                               const std::string& message) {
-        std::string s = file.empty() ? std::string("<scene>") : file;
-        if (line > 0) s += ":" + std::to_string(line);
-        s += ": ";
+        // appended piece by piece (GCC 12 misreports -Wrestrict on chained temporaries)
+        std::string s;
+        s.append(file.empty() ? std::string_view("<scene>") : std::string_view(file));
+        if (line > 0) {
+            s.push_back(':');
+            s.append(std::to_string(line));
+        }
+        s.append(": ");
         // shown without the leading '/', which reads better in a message
-        if (!pointer.empty()) s += pointer.substr(pointer.front() == '/' ? 1 : 0) + ": ";
-        return s + message;
+        if (!pointer.empty()) {
+            s.append(std::string_view(pointer).substr(pointer.front() == '/' ? 1 : 0));
+            s.append(": ");
+        }
+        s.append(message);
+        return s;
     }
 
     std::string m_file;

@@ -1,0 +1,233 @@
+// iris-scene — list, inspect, check and export scenes.
+//
+//   iris-scene list                          the built-in scenes, one per line: NAME  description
+//   iris-scene info NAME|FILE [--json]       triangles, materials, emitters, bounding box, camera,
+//                                            spectral domain, feature summary, load time
+//   iris-scene check FILE                    validate a scene file: "ok: …" and exit 0, or the
+//                                            error (FILE:LINE: POINTER: what) and exit 2
+//   iris-scene export NAME|FILE -o OUT       every shape's triangles as one mesh; the format
+//                                            follows OUT's extension: .obj, .ply or .off
+//
+// NAME is a built-in scene (`iris-scene list`); anything else is read as a scene file
+// (format: docs/scene-format.md). Bad input: one line on stderr, exit status 2.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <variant>
+
+#include <fmt/core.h>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include <iris/scene/scene.hpp>
+#include <iris/spectrum/color.hpp>
+#include <iris/version.hpp>
+
+#include "cli.hpp"
+
+namespace {
+
+using iris::app::usage_error;
+
+struct loaded {
+    std::string source;  ///< "built-in (data/scenes/NAME.json)" or the file path
+    iris::scene::scene_document doc;
+    iris::scene_desc scene;
+    double seconds = 0.0;
+};
+
+/// Parse and mesh, timing both; scene errors are the user's input → exit 2.
+loaded load(const std::string& name_or_path) {
+    try {
+        const auto t0 = std::chrono::steady_clock::now();
+        loaded l;
+        l.doc = iris::scene::load_scene_document(name_or_path);
+        l.scene = iris::scene::build_scene(l.doc);
+        l.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        l.source = iris::scene::builtin_scene_text(name_or_path) ? "built-in (data/scenes/" + name_or_path + ".json)"
+                                                                 : l.doc.source;
+        return l;
+    } catch (const iris::scene::error& e) {
+        throw usage_error(e.what());
+    }
+}
+
+std::string material_summary(const iris::material_desc& m) {
+    if (std::holds_alternative<iris::material::diffuse>(m)) return "diffuse";
+    if (std::holds_alternative<iris::material::conductor>(m)) return "conductor";
+    const auto& d = std::get<iris::material::dielectric>(m);
+    const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"
+                        : std::holds_alternative<iris::cauchy_ior>(d.ior) ? "cauchy"
+                                                                           : "sellmeier";
+    return fmt::format("dielectric {} n(550)={:.4f}{}{}", model, iris::refractive_index(d.ior, 550.0),
+                       iris::is_dispersive(d.ior) ? " dispersive" : "",
+                       d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"));
+}
+
+struct emitter_stats {
+    double area = 0.0;
+    std::size_t shapes = 0;
+    double luminance = 0.0;
+    double power = 0.0;  ///< π·A·∫L dλ × sides, relative watts
+};
+
+std::vector<emitter_stats> emitter_statistics(const iris::scene_desc& s) {
+    std::vector<emitter_stats> out(s.emitters.size());
+    for (const auto& sh : s.shapes) {
+        if (!sh.emitter) continue;
+        auto& e = out[*sh.emitter];
+        ++e.shapes;
+        for (const auto& t : sh.mesh.triangles) {
+            const glm::vec3 a = sh.mesh.positions[t[0]], b = sh.mesh.positions[t[1]], c = sh.mesh.positions[t[2]];
+            e.area += 0.5 * static_cast<double>(glm::length(glm::cross(b - a, c - a)));
+        }
+    }
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const auto& l = s.emitters[i].radiance;
+        out[i].luminance = iris::luminance(l);
+        double integral = 0.0;
+        for (double x = s.lambda_min; x < s.lambda_max; x += 1.0) {
+            const double step = std::min(1.0, static_cast<double>(s.lambda_max) - x);
+            integral += 0.5 * (l(x) + l(x + step)) * step;
+        }
+        out[i].power = std::numbers::pi * out[i].area * integral * (s.emitters[i].two_sided ? 2.0 : 1.0);
+    }
+    return out;
+}
+
+struct bounds {
+    glm::vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+};
+bounds bounding_box(const iris::scene_desc& s) {
+    bounds b;
+    for (const auto& sh : s.shapes)
+        for (const auto& p : sh.mesh.positions) {
+            b.lo = glm::min(b.lo, p);
+            b.hi = glm::max(b.hi, p);
+        }
+    return b;
+}
+
+void list() {
+    for (const auto& b : iris::scene::builtin_scenes()) fmt::print("{:<18} {}\n", b.name, b.description);
+}
+
+void info(const std::string& name, bool json) {
+    const loaded l = load(name);
+    const auto& s = l.scene;
+    const auto f = s.features();
+    const auto es = emitter_statistics(s);
+    const bounds b = bounding_box(s);
+    if (json) {
+        nlohmann::ordered_json j;
+        j["name"] = s.name;
+        j["description"] = l.doc.description;
+        j["source"] = l.source;
+        j["triangles"] = s.triangle_count();
+        j["shapes"] = s.shapes.size();
+        j["materials"] = nlohmann::ordered_json::array();
+        for (std::size_t i = 0; i < s.materials.size(); ++i)
+            j["materials"].push_back({{"name", s.material_names[i]}, {"type", material_summary(s.materials[i])}});
+        j["emitters"] = s.emitters.size();
+        j["emitter_list"] = nlohmann::ordered_json::array();
+        for (std::size_t i = 0; i < s.emitters.size(); ++i)
+            j["emitter_list"].push_back({{"name", l.doc.emitters[i].name},
+                                         {"spd", s.emitters[i].spd_name},
+                                         {"luminance", es[i].luminance},
+                                         {"power", es[i].power},
+                                         {"area", es[i].area},
+                                         {"shapes", es[i].shapes},
+                                         {"two_sided", s.emitters[i].two_sided}});
+        j["environment"] = s.environment ? nlohmann::ordered_json(s.environment->spd_name) : nlohmann::ordered_json();
+        j["bounds"] = {{"min", {b.lo.x, b.lo.y, b.lo.z}}, {"max", {b.hi.x, b.hi.y, b.hi.z}}};
+        j["camera"] = {{"position", {s.camera.position.x, s.camera.position.y, s.camera.position.z}},
+                       {"look_at", {s.camera.look_at.x, s.camera.look_at.y, s.camera.look_at.z}},
+                       {"fov", s.camera.fov_y_degrees},
+                       {"resolution", {s.camera.width, s.camera.height}}};
+        j["spectral_domain"] = {s.lambda_min, s.lambda_max};
+        j["dispersive_specular"] = f.dispersive_specular;
+        j["dispersive_rough"] = f.dispersive_rough;
+        j["has_specular"] = f.has_specular;
+        j["has_environment"] = f.has_environment;
+        j["emitter_spds"] = f.emitter_spds;
+        j["load_seconds"] = l.seconds;
+        fmt::print("{}\n", j.dump(2));
+        return;
+    }
+    fmt::print("scene        {}\n", s.name);
+    if (!l.doc.description.empty()) fmt::print("description  {}\n", l.doc.description);
+    fmt::print("source       {}\n", l.source);
+    fmt::print("triangles    {} in {} shapes\n", s.triangle_count(), s.shapes.size());
+    fmt::print("materials    {}\n", s.materials.size());
+    for (std::size_t i = 0; i < s.materials.size(); ++i)
+        fmt::print("  {:<14} {}\n", s.material_names[i], material_summary(s.materials[i]));
+    fmt::print("emitters     {}\n", s.emitters.size());
+    for (std::size_t i = 0; i < s.emitters.size(); ++i)
+        fmt::print("  {:<14} {} luminance={:g} power={:g} area={:g} shapes={}{}\n", l.doc.emitters[i].name,
+                   s.emitters[i].spd_name, es[i].luminance, es[i].power, es[i].area, es[i].shapes,
+                   s.emitters[i].two_sided ? " two-sided" : "");
+    fmt::print("environment  {}\n", s.environment ? s.environment->spd_name : std::string("none"));
+    fmt::print("bounds       [{:g}, {:g}, {:g}] - [{:g}, {:g}, {:g}]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+    fmt::print("camera       {}x{} fov={:g} position=[{:g}, {:g}, {:g}] look_at=[{:g}, {:g}, {:g}]\n", s.camera.width,
+               s.camera.height, s.camera.fov_y_degrees, s.camera.position.x, s.camera.position.y, s.camera.position.z,
+               s.camera.look_at.x, s.camera.look_at.y, s.camera.look_at.z);
+    fmt::print("domain       {:g}-{:g} nm\n", s.lambda_min, s.lambda_max);
+    std::string spds;
+    for (const auto& n : f.emitter_spds) spds += (spds.empty() ? "" : ",") + n;
+    fmt::print("features     dispersive_specular={} dispersive_rough={} has_specular={} has_environment={} "
+               "emitter_spds={}\n",
+               f.dispersive_specular, f.dispersive_rough, f.has_specular, f.has_environment, spds);
+    fmt::print("load         {:.2f} ms\n", l.seconds * 1e3);
+}
+
+void check(const std::string& file) {
+    const loaded l = load(file);
+    fmt::print("ok: {} ({} triangles, {} shapes, {} emitters)\n", l.scene.name, l.scene.triangle_count(),
+               l.scene.shapes.size(), l.scene.emitters.size());
+}
+
+void export_mesh(const std::string& name, const std::string& out) {
+    const loaded l = load(name);
+    try {
+        iris::scene::export_scene_mesh(l.scene, out);
+    } catch (const iris::scene::error& e) {
+        throw usage_error(e.what());
+    }
+    fmt::print("wrote {} ({} triangles)\n", out, l.scene.triangle_count());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"iris-scene: list, inspect, check and export iris scenes", "iris-scene"};
+    app.set_version_flag("--version", std::string(iris::version));
+    app.require_subcommand(1);
+
+    struct options {
+        std::string scene, out;
+        bool json = false;
+    };
+    auto o = std::make_shared<options>();
+
+    app.add_subcommand("list", "List the built-in scenes with a short description")->callback(list);
+
+    auto* info_cmd = app.add_subcommand("info", "Triangles, materials, emitters, bounds and feature summary of a scene");
+    info_cmd->add_option("SCENE", o->scene, "built-in scene name or scene file")->required();
+    info_cmd->add_flag("--json", o->json, "print one JSON object instead of text");
+    info_cmd->callback([o] { info(o->scene, o->json); });
+
+    auto* check_cmd = app.add_subcommand("check", "Validate a scene file: exit 0 if valid, 2 with the error otherwise");
+    check_cmd->add_option("FILE", o->scene, "scene file (or built-in name)")->required();
+    check_cmd->callback([o] { check(o->scene); });
+
+    auto* export_cmd = app.add_subcommand("export", "Write the scene's geometry as one mesh (.obj, .ply or .off)");
+    export_cmd->add_option("SCENE", o->scene, "built-in scene name or scene file")->required();
+    export_cmd->add_option("-o,--output", o->out, "output mesh file; its extension picks the format")->required();
+    export_cmd->callback([o] { export_mesh(o->scene, o->out); });
+
+    return iris::app::run(app, argc, argv);
+}

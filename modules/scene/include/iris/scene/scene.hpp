@@ -1,0 +1,52 @@
+#pragma once
+/// \file
+/// \brief iris::scene — scene files (JSON, docs/scene-format.md) and the built-in scenes,
+/// loaded into an `iris::scene_desc` (include/iris/render/scene.hpp) with world-space
+/// triangle meshes.
+///
+/// Every error in the input — syntax, unknown keys, types, materials or glasses,
+/// out-of-range or non-numeric values, missing mesh files, empty scenes, scenes without
+/// an emitter — throws `iris::scene::error` naming the file, the line and the JSON
+/// pointer of the value and what was expected. Nothing else is thrown for bad input.
+
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "iris/render/scene.hpp"
+#include "iris/scene/document.hpp"
+#include "iris/scene/error.hpp"
+
+namespace iris::scene {
+
+/// \brief Mesh a checked document: generate or load every shape, apply its transform,
+/// check it, scale power-specified emitters by their area. \throws error (a mesh file that
+/// cannot be read or holds no valid triangles).
+iris::scene_desc build_scene(const scene_document& doc);
+
+/// \brief Parse a scene from JSON text. `source_name` appears in messages; relative mesh
+/// paths are resolved against `base_dir`.
+iris::scene_desc parse_scene(std::string_view json_text, const std::string& source_name,
+                             const std::filesystem::path& base_dir);
+
+/// \brief Read and parse a scene file (mesh paths relative to the file's directory).
+iris::scene_desc load_scene_file(const std::filesystem::path& path);
+
+/// \brief A built-in scene (`builtin_scenes()`), from JSON compiled into the library: no
+/// file is read. \throws error listing the valid names.
+iris::scene_desc builtin_scene(std::string_view name);
+
+/// \brief A built-in scene if `name_or_path` names one, else the scene file at that path.
+iris::scene_desc load_scene(std::string_view name_or_path);
+
+/// \brief The document (description, recipes) behind `load_scene`, for tools that report
+/// on a scene without meshing it.
+scene_document load_scene_document(std::string_view name_or_path);
+
+/// \brief Write every shape's triangles as one mesh (CGAL IO); the format follows the
+/// extension of `path`: .obj, .ply or .off. \throws error naming the path if it cannot be
+/// written or the extension is not one of those.
+void export_scene_mesh(const iris::scene_desc& scene, const std::filesystem::path& path);
+
+}  // namespace iris::scene

@@ -1,0 +1,111 @@
+// scene_document → scene_desc: every shape recipe becomes world-space triangles
+// (iris::geometry builds and transforms them), then power-specified emitters are scaled
+// by the area they cover. Geometry failures become iris::scene::error at the shape.
+#include <cmath>
+#include <numbers>
+#include <type_traits>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "iris/geometry/mesh.hpp"
+#include "iris/scene/scene.hpp"
+
+namespace iris::scene {
+namespace {
+
+/// The geometry module's mesh as the core's (the same layout; a copy if the types differ).
+template <class Mesh>
+iris::triangle_mesh to_core(Mesh&& m) {
+    if constexpr (std::is_same_v<std::remove_cvref_t<Mesh>, iris::triangle_mesh>) {
+        return std::forward<Mesh>(m);
+    } else {
+        iris::triangle_mesh c;
+        c.positions = std::move(m.positions);
+        c.triangles = std::move(m.triangles);
+        return c;
+    }
+}
+
+/// The quad recipe: size.x × size.z in the plane y = 0, centred, front face +y. Built here
+/// (two triangles) so that its convention is exactly the documented one.
+iris::triangle_mesh make_quad(float sx, float sz) {
+    const float x = 0.5f * sx, z = 0.5f * sz;
+    iris::triangle_mesh m;
+    m.positions = {{-x, 0.0f, -z}, {-x, 0.0f, z}, {x, 0.0f, z}, {x, 0.0f, -z}};
+    m.triangles = {{0, 1, 2}, {0, 2, 3}};  // (v1 − v0) × (v2 − v0) = +y
+    return m;
+}
+
+iris::triangle_mesh recipe(const shape_spec& s) {
+    const glm::vec3 origin(0.0f);
+    switch (s.type) {
+        case shape_type::box: return to_core(geometry::make_box(-0.5f * s.size, 0.5f * s.size));
+        case shape_type::cube: return to_core(geometry::make_cube(origin, s.size.x));
+        case shape_type::prism: return to_core(geometry::make_prism(origin, s.size.x, s.size.z));
+        case shape_type::hollow_cube:
+            return to_core(geometry::make_hollow_cube(origin, s.size.x, s.size.x - 2.0f * s.wall));
+        case shape_type::quad: return make_quad(s.size.x, s.size.z);
+        case shape_type::mesh: return to_core(geometry::load_mesh(s.file));
+    }
+    return {};
+}
+
+double triangle_area(const iris::triangle_mesh& m, const std::array<std::uint32_t, 3>& t) {
+    const glm::dvec3 a(m.positions[t[0]]), b(m.positions[t[1]]), c(m.positions[t[2]]);
+    return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+}  // namespace
+
+iris::scene_desc build_scene(const scene_document& doc) {
+    iris::scene_desc s = doc.desc;
+    s.shapes.clear();
+    s.shapes.reserve(doc.shapes.size());
+    std::vector<double> emitter_area(s.emitters.size(), 0.0);
+
+    for (const auto& spec : doc.shapes) {
+        const auto fail = [&](const std::string& message) -> void {
+            throw error(doc.source, spec.line, spec.type == shape_type::mesh ? spec.pointer + "/file" : spec.pointer,
+                        message);
+        };
+        iris::triangle_mesh mesh;
+        try {
+            mesh = to_core(geometry::transformed(recipe(spec), spec.transform));
+        } catch (const geometry::error& e) {
+            fail(e.what());
+        }
+        if (spec.flip)
+            for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+
+        double area = 0.0;
+        for (const auto& p : mesh.positions)
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                fail("the shape has non-finite coordinates after its transform");
+        for (const auto& t : mesh.triangles) {
+            if (t[0] >= mesh.positions.size() || t[1] >= mesh.positions.size() || t[2] >= mesh.positions.size())
+                fail("a triangle indexes a vertex that does not exist");
+            area += triangle_area(mesh, t);
+        }
+        if (!(area > 0.0)) fail("the shape has no triangle of non-zero area");
+        if (spec.emitter) emitter_area[*spec.emitter] += area;
+
+        s.shapes.push_back({spec.name, std::move(mesh), spec.material, spec.emitter});
+    }
+
+    // power → radiance: Φ = π·A·∫L dλ per side (a Lambertian emitter's exitance is π·L);
+    // the document normalised the SPD to ∫L dλ = 1 over the domain
+    for (std::size_t i = 0; i < s.emitters.size(); ++i) {
+        const auto& spec = doc.emitters[i];
+        if (!spec.power) continue;
+        const double sides = s.emitters[i].two_sided ? 2.0 : 1.0;
+        const double k = *spec.power / (std::numbers::pi * emitter_area[i] * sides);
+        if (!(emitter_area[i] > 0.0) || !std::isfinite(k))
+            throw error(doc.source, spec.line, spec.pointer + "/power",
+                        "cannot scale to a power: the emitter's area is " + std::to_string(emitter_area[i]));
+        s.emitters[i].radiance = s.emitters[i].radiance.scaled(k);
+    }
+    return s;
+}
+
+}  // namespace iris::scene

@@ -1,0 +1,61 @@
+// Where scenes come from: files, the embedded built-ins, or either by name.
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "iris/scene/scene.hpp"
+
+namespace iris::scene {
+namespace {
+
+std::string read_text(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw error(path.string(), 0, "", "is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw error(path.string(), 0, "", std::string("cannot open the scene file: ") + std::strerror(errno));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw error(path.string(), 0, "", "cannot read the scene file");
+    return text.str();
+}
+
+scene_document builtin_document(std::string_view name) {
+    const auto text = builtin_scene_text(name);
+    if (!text)
+        throw error("builtin:" + std::string(name), 0, "",
+                    "unknown built-in scene '" + std::string(name) + "'; expected one of " + builtin_scene_names());
+    // built-ins use built-in shapes only, so there is no directory to resolve against
+    return parse_scene_document(*text, std::string(name) + ".json", {});
+}
+
+scene_document file_document(const std::filesystem::path& path) {
+    return parse_scene_document(read_text(path), path.string(), path.parent_path());
+}
+
+}  // namespace
+
+iris::scene_desc parse_scene(std::string_view json_text, const std::string& source_name,
+                             const std::filesystem::path& base_dir) {
+    return build_scene(parse_scene_document(json_text, source_name, base_dir));
+}
+
+iris::scene_desc load_scene_file(const std::filesystem::path& path) { return build_scene(file_document(path)); }
+
+iris::scene_desc builtin_scene(std::string_view name) { return build_scene(builtin_document(name)); }
+
+scene_document load_scene_document(std::string_view name_or_path) {
+    if (builtin_scene_text(name_or_path)) return builtin_document(name_or_path);
+    const std::filesystem::path p(name_or_path);
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec))
+        throw error(std::string(name_or_path), 0, "",
+                    "no such scene file, and not a built-in scene (" + builtin_scene_names() + ")");
+    return file_document(p);
+}
+
+iris::scene_desc load_scene(std::string_view name_or_path) { return build_scene(load_scene_document(name_or_path)); }
+
+}  // namespace iris::scene
