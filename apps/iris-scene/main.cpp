@@ -3,8 +3,10 @@
 //   iris-scene list                          the built-in scenes, one per line: NAME  description
 //   iris-scene info NAME|FILE [--json]       triangles, materials, emitters, bounding box, camera,
 //                                            spectral domain, feature summary, load time
-//   iris-scene check FILE                    validate a scene file: "ok: …" and exit 0, or the
-//                                            error (FILE:LINE: POINTER: what) and exit 2
+//   iris-scene check FILE                    validate a scene file: "ok: …" (plus a warning for
+//                                            each glass shape that is not a closed solid) and
+//                                            exit 0, or the error (FILE:LINE: POINTER: what)
+//                                            and exit 2
 //   iris-scene export NAME|FILE -o OUT       every shape's triangles as one mesh; the format
 //                                            follows OUT's extension: .obj, .ply or .off
 //
@@ -188,6 +190,10 @@ void check(const std::string& file) {
     const loaded l = load(file);
     fmt::print("ok: {} ({} triangles, {} shapes, {} emitters)\n", l.scene.name, l.scene.triangle_count(),
                l.scene.shapes.size(), l.scene.emitters.size());
+    // not errors (the scene renders), but glass without an inside refracts nonsense
+    for (const auto& p : iris::scene::check_dielectric_solids(l.scene))
+        fmt::print("warning: shape {} '{}' is glass but not a closed outward solid: {}\n", p.shape,
+                   l.scene.shapes[p.shape].name, p.detail);
 }
 
 void export_mesh(const std::string& name, const std::string& out) {

@@ -225,6 +225,55 @@ TEST(BuiltinScenes, PrismLampLightsThePrismThroughTheSlitAndNothingElse) {
     EXPECT_EQ(std::get<iris::material::dielectric>(s.materials[s.shapes[prism].material]).roughness, 0.0f);
 }
 
+TEST(SceneFiles, EveryGeneratedShapeIsAValidSolidUnderAnyTransform) {
+    // each closed recipe, plain, rotated + scaled, and mirrored (negative scale: re-wound)
+    const char* recipes[] = {R"("type": "box", "size": [1, 2, 0.5])", R"("type": "cube", "size": 0.7)",
+                             R"("type": "prism", "side": 0.4, "length": 1.2)",
+                             R"("type": "hollow_cube", "size": 0.5, "wall": 0.06)"};
+    const char* transforms[] = {"[]", R"([{"rotate": {"axis": [1, 2, 3], "degrees": 37}}, {"scale": [2, 1, 0.5]}, {"translate": [1, 2, 3]}])",
+                                R"([{"scale": [-1, 1, 1]}])", R"([{"scale": [-1, -2, -1]}, {"rotate": {"axis": [0, 1, 0], "degrees": 90}}])"};
+    for (const char* r : recipes)
+        for (const char* t : transforms) {
+            SCOPED_TRACE(std::string(r) + " " + t);
+            const auto s = iris::scene::parse_scene(
+                std::string(R"({"camera": {"position": [0, 0, 9], "look_at": [0, 0, 0]},
+                  "materials": {"g": {"type": "dielectric", "ior": "N-BK7"}}, "environment": {"spd": "D65"},
+                  "shapes": [{)") + r + R"(, "material": "g", "transform": )" + t + "}]}",
+                "shape.json", {});
+            const auto c = iris::geometry::check_mesh(as_geometry(s.shapes[0].mesh));
+            EXPECT_TRUE(c.ok()) << c.detail;
+            EXPECT_GT(signed_volume(s.shapes[0].mesh), 0.0);
+            EXPECT_TRUE(iris::scene::check_dielectric_solids(s).empty());
+        }
+    // the open quad: two triangles facing +y, before its transform
+    const auto q = iris::scene::parse_scene(R"({"camera": {"position": [0, 0, 9], "look_at": [0, 0, 0]},
+        "materials": {"m": {"type": "diffuse", "reflectance": 0.5}}, "environment": {"spd": "D65"},
+        "shapes": [{"type": "quad", "size": [2, 3], "material": "m"}]})",
+                                            "quad.json", {});
+    const auto& m = q.shapes[0].mesh;
+    ASSERT_EQ(m.triangle_count(), 2u);
+    for (const auto& t : m.triangles) {
+        const glm::vec3 n = glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+        EXPECT_GT(n.y, 0.0f);
+        EXPECT_FLOAT_EQ(glm::length(n), 6.0f);  // |cross| = 2 × area, each triangle half of 2 × 3
+    }
+    EXPECT_FALSE(iris::geometry::check_mesh(as_geometry(m)).closed);
+}
+
+TEST(SceneFiles, GlassThatIsNotAClosedSolidIsReported) {
+    const auto s = iris::scene::parse_scene(R"({"camera": {"position": [0, 0, 9], "look_at": [0, 0, 0]},
+        "materials": {"g": {"type": "dielectric", "ior": 1.5}, "m": {"type": "diffuse", "reflectance": 0.5}},
+        "environment": {"spd": "D65"},
+        "shapes": [{"type": "quad", "size": [1, 1], "material": "m"},
+                   {"type": "quad", "size": [1, 1], "material": "g"},
+                   {"type": "cube", "size": 1, "material": "g"}]})",
+                                            "glass.json", {});
+    const auto p = iris::scene::check_dielectric_solids(s);
+    ASSERT_EQ(p.size(), 1u);  // the glass quad only: a diffuse quad is fine, the cube is a solid
+    EXPECT_EQ(p[0].shape, 1u);
+    EXPECT_FALSE(p[0].detail.empty());
+}
+
 TEST(SceneFiles, MeshFilesAreReadRelativeToTheSceneFile) {
     const fs::path dir = temp_dir("mesh");
     fs::create_directories(dir / "meshes");

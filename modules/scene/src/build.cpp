@@ -5,6 +5,7 @@
 #include <numbers>
 #include <type_traits>
 #include <utility>
+#include <variant>
 
 #include <glm/geometric.hpp>
 
@@ -106,6 +107,21 @@ iris::scene_desc build_scene(const scene_document& doc) {
         s.emitters[i].radiance = s.emitters[i].radiance.scaled(k);
     }
     return s;
+}
+
+std::vector<shape_problem> check_dielectric_solids(const iris::scene_desc& s) {
+    std::vector<shape_problem> out;
+    for (std::size_t i = 0; i < s.shapes.size(); ++i) {
+        const auto& sh = s.shapes[i];
+        if (sh.material >= s.materials.size() || !std::holds_alternative<material::dielectric>(s.materials[sh.material]))
+            continue;
+        geometry::triangle_mesh g;
+        g.positions = sh.mesh.positions;
+        g.triangles = sh.mesh.triangles;
+        const auto c = geometry::check_mesh(g);
+        if (!c.ok()) out.push_back({i, c.detail.empty() ? std::string("not a valid closed solid") : c.detail});
+    }
+    return out;
 }
 
 }  // namespace iris::scene

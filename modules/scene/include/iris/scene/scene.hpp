@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "iris/render/scene.hpp"
 #include "iris/scene/document.hpp"
@@ -43,6 +44,17 @@ iris::scene_desc load_scene(std::string_view name_or_path);
 /// \brief The document (description, recipes) behind `load_scene`, for tools that report
 /// on a scene without meshing it.
 scene_document load_scene_document(std::string_view name_or_path);
+
+/// \brief A shape that is not what its material needs.
+struct shape_problem {
+    std::size_t shape = 0;  ///< index into scene_desc::shapes
+    std::string detail;     ///< what iris::geometry::check_mesh found
+};
+
+/// \brief The dielectric shapes whose mesh is not a closed, manifold, outward-facing,
+/// self-intersection-free solid (glass needs an inside and an outside). Built-in shapes
+/// always pass; a mesh file may not. A warning, not an error: such a scene still renders.
+std::vector<shape_problem> check_dielectric_solids(const iris::scene_desc& scene);
 
 /// \brief Write every shape's triangles as one mesh (CGAL IO); the format follows the
 /// extension of `path`: .obj, .ply or .off. \throws error naming the path if it cannot be
