@@ -191,25 +191,37 @@ inline bool is_delta(const material_desc& m) noexcept {
     return false;
 }
 
-/// \brief f(ωo, ωi, λ_k)·|cos θi| for non-delta materials (0 for delta ones).
-template <std::size_t N>
-sampled_spectrum<N> bsdf_eval(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
-                              const sampled_wavelengths<N>& wl) noexcept {
-    if (const auto* d = std::get_if<material::diffuse>(&mat)) {
+/// \brief f(ωo, ωi)·|cos θi| for non-delta materials (0 for delta ones) at N wavelengths,
+/// given the material's spectra at those wavelengths on demand: `albedo()` the reflectance
+/// (diffuse), `eta()` the index of refraction (dielectric). The integrator's B term passes
+/// spectra read from its bin tables (iris/render/bins.hpp); `bsdf_eval` evaluates the scene's.
+template <std::size_t N, class Albedo, class Eta>
+sampled_spectrum<N> bsdf_eval_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
+                                    const glm::vec3& wi, Albedo&& albedo, Eta&& eta) noexcept {
+    if (std::holds_alternative<material::diffuse>(mat)) {
         const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
         if (co * ci <= 0.0f) return {};  // two-sided Lambertian: same side only
-        return sample(d->reflectance, wl) * (std::fabs(ci) * detail::inv_pi);
+        return sampled_spectrum<N>(albedo()) * (std::fabs(ci) * detail::inv_pi);
     }
     if (const auto* g = std::get_if<material::dielectric>(&mat); g && !detail::effectively_smooth(*g)) {
         const frame fr = frame::from_normal(n);
         const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
         const detail::ggx m{g->roughness};
-        const auto eta = detail::etas(g->ior, wl);
+        const sampled_spectrum<N> e = eta();
         sampled_spectrum<N> out;
-        for (std::size_t k = 0; k < N; ++k) out[k] = detail::rough_dielectric(m, lo, li, eta[k]).f_cos;
+        for (std::size_t k = 0; k < N; ++k) out[k] = detail::rough_dielectric(m, lo, li, e[k]).f_cos;
         return out;
     }
     return {};
+}
+
+/// \brief f(ωo, ωi, λ_k)·|cos θi| for non-delta materials (0 for delta ones).
+template <std::size_t N>
+sampled_spectrum<N> bsdf_eval(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
+                              const sampled_wavelengths<N>& wl) noexcept {
+    return bsdf_eval_given<N>(
+        mat, n, wo, wi, [&] { return sample(std::get<material::diffuse>(mat).reflectance, wl); },
+        [&] { return detail::etas(std::get<material::dielectric>(mat).ior, wl); });
 }
 
 /// \brief p(ωi | ωo, λ_k) in solid angle for non-delta materials (0 for delta ones).
@@ -318,24 +330,34 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const g
 }
 
 /// \brief The weight of a delta event at other wavelengths (the B-term bins) when they
-/// follow the hero's lobe and direction: F(λ_b) for reflection, (1 − F(λ_b))/η_b² for
-/// transmission. Treating λ_b as if it took the hero's refracted direction is the
-/// method's (only) bias (SPEC §3).
+/// follow the hero's lobe and direction: R(λ_b) off a conductor, F(λ_b) for reflection off
+/// a dielectric, (1 − F(λ_b))/η_b² for transmission. Treating λ_b as if it took the hero's
+/// refracted direction is the method's (only) bias (SPEC §3). The material's spectra come
+/// on demand as in `bsdf_eval_given`: `albedo()` a conductor's reflectance, `eta()` a
+/// dielectric's index.
+template <std::size_t M, class Albedo, class Eta>
+sampled_spectrum<M> delta_weight_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, lobe kind,
+                                       Albedo&& albedo, Eta&& eta) noexcept {
+    if (std::holds_alternative<material::conductor>(mat)) return sampled_spectrum<M>(albedo());
+    if (!std::holds_alternative<material::dielectric>(mat)) return {};
+    const float co = glm::dot(n, wo);
+    const sampled_spectrum<M> e = eta();
+    sampled_spectrum<M> w;
+    for (std::size_t k = 0; k < M; ++k) {
+        const float f = detail::fresnel_dielectric(co, e[k]);
+        const float ek = co > 0.0f ? e[k] : 1.0f / e[k];
+        w[k] = kind == lobe::reflection ? f : (1.0f - f) / (ek * ek);
+    }
+    return w;
+}
+
+/// \brief `delta_weight_given` with the scene's spectra evaluated at `wl`.
 template <std::size_t M>
 sampled_spectrum<M> delta_weight(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, lobe kind,
                                  const sampled_wavelengths<M>& wl) noexcept {
-    if (const auto* c = std::get_if<material::conductor>(&mat)) return sample(c->reflectance, wl);
-    const auto* g = std::get_if<material::dielectric>(&mat);
-    if (!g) return {};
-    const float co = glm::dot(n, wo);
-    const auto eta = detail::etas(g->ior, wl);
-    sampled_spectrum<M> w;
-    for (std::size_t k = 0; k < M; ++k) {
-        const float f = detail::fresnel_dielectric(co, eta[k]);
-        const float e = co > 0.0f ? eta[k] : 1.0f / eta[k];
-        w[k] = kind == lobe::reflection ? f : (1.0f - f) / (e * e);
-    }
-    return w;
+    return delta_weight_given<M>(
+        mat, n, wo, kind, [&] { return sample(std::get<material::conductor>(mat).reflectance, wl); },
+        [&] { return detail::etas(std::get<material::dielectric>(mat).ior, wl); });
 }
 
 }  // namespace iris

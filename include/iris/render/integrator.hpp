@@ -13,7 +13,9 @@
 /// ρ_k = p(x̄|λ_k)/p(x̄|λ₀), so f_j / Σ_k p_k = β_j / Σ_k ρ_k.
 ///   B = Σ_b (1 − r_α(λ_b)) f_h(x̄, λ_b) Δλ / p(x̄ | λ₀)
 /// with the hero's own BSDF/light balance weights; λ_b = λmin + (b + u)Δλ (one jitter u
-/// per sample shared by all bins, so each λ_b is uniform in its bin).
+/// per sample shared by all bins, so each λ_b is uniform in its bin). The spectra of the
+/// B term are read from tables on the bins' lattice built once per integrator
+/// (iris/render/bins.hpp): each is one blend of two rows, not a per-bin table lookup.
 ///
 /// `Dispersive = false` is the instantiation for scenes without λ-dependent directions:
 /// there every p(x̄|λ_k) equals the hero's, ρ ≡ 1, so no per-wavelength pdf is evaluated
@@ -27,6 +29,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "iris/render/bins.hpp"
 #include "iris/render/bsdf.hpp"
 #include "iris/render/frame.hpp"
 #include "iris/render/intersector.hpp"
@@ -59,8 +62,10 @@ public:
     static constexpr bool dispersive = Dispersive;
     static constexpr std::size_t bins = Bins;
 
-    path_integrator(const scene_desc& scene, const light_sampler& lights, path_settings settings = {}) noexcept
-        : m_scene(scene), m_lights(lights), m_settings(settings) {}
+    path_integrator(const scene_desc& scene, const light_sampler& lights, path_settings settings = {})
+        : m_scene(scene), m_lights(lights), m_settings(settings) {
+        if constexpr (propagates) m_bins = bin_tables<Bins>(scene);
+    }
 
     /// \brief Trace one path from `origin` along unit `dir`. `dist` is the restricted
     /// distribution at this sample's α (its `restriction`, `normalisation` and
@@ -73,15 +78,12 @@ public:
 
         // B-term bins (only while the restriction is not yet relaxed)
         const bool use_bins = propagates && alpha < 1.0f;
-        const float lmin = m_scene.lambda_min;
-        const float bin_width = (m_scene.lambda_max - m_scene.lambda_min) / static_cast<float>(Bins);
         sampled_wavelengths<Bins> wb;
+        bin_position bp;
         if (use_bins) {
             const float jitter = rng.next();
-            for (std::size_t b = 0; b < Bins; ++b) {
-                wb.lambda(b) = lmin + (static_cast<float>(b) + jitter) * bin_width;
-                wb.pdf(b) = 1.0f;
-            }
+            wb = m_bins.lattice.wavelengths(jitter);
+            bp = m_bins.lattice.position(jitter);
         }
 
         sampled_spectrum<C> beta(1.0f), rho(1.0f), rho_before(1.0f), lc;
@@ -97,7 +99,7 @@ public:
                 if (m_scene.environment) {  // not light-sampled: BSDF sampling is its only strategy
                     const float denom = sum_rho(rho);
                     lc += beta * sample(m_scene.environment->radiance, wl) / denom;
-                    if (use_bins) lb += tb * sample(m_scene.environment->radiance, wb);
+                    if (use_bins) lb += tb * m_bins.environment(bp);
                 }
                 break;
             }
@@ -125,12 +127,14 @@ public:
                         w_hero = prev_pdf / (prev_pdf + pl);
                     }
                     lc += beta * sample(em.radiance, wl) / denom;
-                    if (use_bins) lb += tb * sample(em.radiance, wb) * w_hero;
+                    if (use_bins) lb += tb * m_bins.emission[*shape.emitter](bp) * w_hero;
                 }
             }
             if (depth >= m_settings.max_depth) break;
             const material_desc& mat = m_scene.materials[shape.material];
             const bool delta = is_delta(mat);
+            const auto bin_albedo = [&] { return m_bins.albedo[shape.material](bp); };
+            const auto bin_eta = [&] { return m_bins.eta[shape.material](bp); };
 
             // next-event estimation
             if (!delta && !m_lights.empty()) {
@@ -156,7 +160,8 @@ public:
                                 lc += beta * f * sample(em.radiance, wl) / (pl * denom);
                                 if (use_bins) {
                                     const float w_hero = pl / (pl + pb[0]);
-                                    lb += tb * bsdf_eval(mat, ng, wo, wi, wb) * sample(em.radiance, wb) * (w_hero / pl);
+                                    lb += tb * bsdf_eval_given<Bins>(mat, ng, wo, wi, bin_albedo, bin_eta) *
+                                          m_bins.emission[ls->emitter](bp) * (w_hero / pl);
                                 }
                             }
                         }
@@ -172,9 +177,9 @@ public:
             if (!(p0 > 0.0f)) break;
             if (use_bins) {
                 if (bs->delta)
-                    tb *= delta_weight(mat, ng, wo, bs->kind, wb) / p0;
+                    tb *= delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta) / p0;
                 else
-                    tb *= bsdf_eval(mat, ng, wo, bs->wi, wb) / p0;
+                    tb *= bsdf_eval_given<Bins>(mat, ng, wo, bs->wi, bin_albedo, bin_eta) / p0;
             }
             beta *= bs->f_cos / p0;
             if constexpr (Dispersive) {
@@ -205,12 +210,14 @@ public:
             const double w = static_cast<double>(dist.restriction(wl[j])) / (static_cast<double>(wl.pdf(j)) * z);
             add_cmf(v, w * static_cast<double>(lc[j]), wl[j]);
         }
-        if (use_bins) {
-            for (std::size_t b = 0; b < Bins; ++b) {
-                if (lb[b] == 0.0f) continue;
-                const double keep = 1.0 - static_cast<double>(dist.restriction(wb[b]));
-                add_cmf(v, keep * static_cast<double>(bin_width) * static_cast<double>(lb[b]), wb[b]);
-            }
+        if (use_bins && !lb.is_zero()) {
+            // Σ_b (1 − r_α(λ_b)) Δλ L_b · cmf(λ_b)
+            sampled_spectrum<Bins> w;
+            for (std::size_t b = 0; b < Bins; ++b) w[b] = 1.0f - dist.restriction(wb[b]);
+            w *= lb * m_bins.lattice.bin_width();
+            v.x += static_cast<double>((w * m_bins.x_bar(bp)).sum());
+            v.y += static_cast<double>((w * m_bins.y_bar(bp)).sum());
+            v.z += static_cast<double>((w * m_bins.z_bar(bp)).sum());
         }
         constexpr double k = 1.0 / cie::y_integral;
         out.value = {v.x * k, v.y * k, v.z * k};
@@ -249,6 +256,7 @@ private:
     const scene_desc& m_scene;
     const light_sampler& m_lights;
     path_settings m_settings;
+    bin_tables<Bins> m_bins;  ///< empty unless the bias policy propagates
 };
 
 }  // namespace iris
