@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cmath>
+#include <string>
+#include <variant>
 #include <vector>
 
 #include <iris/metrics/metrics.hpp>
@@ -94,58 +96,107 @@ TEST(Statistical, FurnaceNegativeControlRestrictOnlyIsDimBeforeNthold) {
     EXPECT_GT(std::fabs(e.mean - 5.0), z_furnace * e.se);
 }
 
-// ---- U2: after N_thold `paper` and `hwss` agree --------------------------------------
+// ---- U2 / U3: two presets agree -----------------------------------------------------
 // R = 16 seeds each; statistics: the mean X, Y, Z over the whole image and over its four
 // quadrants (15 tests). Welch t-test per statistic, Šidák-corrected to family-wise
 // α = 0.01: per-test α = 6.7e-4; with ≥ 15 degrees of freedom the two-sided t critical
 // value is ≤ 4.271 (computed from Student's t; 30 dof would give 3.9).
-constexpr double t_u2 = 4.271;
+constexpr double t_agree = 4.271;
+constexpr int seeds = 16, width = 24, height = 18;
 
-void expect_u2(const char* scene_name) {
-    const auto s = iris::scene::builtin_scene(scene_name);
-    constexpr int seeds = 16, w = 24, h = 18, nthold = 8, spp = 24;
-    std::array<std::vector<double>, 2> stats[15];
-    for (int which = 0; which < 2; ++which)
-        for (int seed = 0; seed < seeds; ++seed) {
-            options o;
-            o.preset = which == 0 ? "hwss" : "paper";
-            o.width = w;
-            o.height = h;
-            o.spp = spp;
-            o.nthold = nthold;
-            o.seed = static_cast<std::uint64_t>(1000 * which + seed + 1);
-            const auto px = window_means(s, o, nthold);
-            for (int region = 0; region < 5; ++region) {
-                std::array<double, 3> sum{};
-                int n = 0;
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) {
-                        if (region > 0 && ((x < w / 2) != ((region - 1) % 2 == 0) || (y < h / 2) != ((region - 1) / 2 == 0)))
-                            continue;
-                        const auto& p = px[static_cast<std::size_t>(y * w + x)];
-                        sum[0] += p.x, sum[1] += p.y, sum[2] += p.z;
-                        ++n;
-                    }
-                for (int c = 0; c < 3; ++c) stats[region * 3 + c][static_cast<std::size_t>(which)].push_back(sum[static_cast<std::size_t>(c)] / n);
-            }
+/// \brief Per-seed means of X, Y, Z over the image and its quadrants (15 statistics) of
+/// the samples [from, spp) of `preset`.
+std::array<std::vector<double>, 15> region_statistics(const iris::scene_desc& s, const std::string& preset, int spp,
+                                                      int nthold, int from, std::uint64_t seed_base) {
+    std::array<std::vector<double>, 15> stats;
+    for (int seed = 0; seed < seeds; ++seed) {
+        options o;
+        o.preset = preset;
+        o.width = width;
+        o.height = height;
+        o.spp = spp;
+        o.nthold = nthold;
+        o.seed = seed_base + static_cast<std::uint64_t>(seed);
+        const auto px = window_means(s, o, from);
+        for (int region = 0; region < 5; ++region) {
+            std::array<double, 3> sum{};
+            int n = 0;
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) {
+                    if (region > 0 &&
+                        ((x < width / 2) != ((region - 1) % 2 == 0) || (y < height / 2) != ((region - 1) / 2 == 0)))
+                        continue;
+                    const auto& p = px[static_cast<std::size_t>(y * width + x)];
+                    sum[0] += p.x, sum[1] += p.y, sum[2] += p.z;
+                    ++n;
+                }
+            for (std::size_t c = 0; c < 3; ++c) stats[static_cast<std::size_t>(region) * 3 + c].push_back(sum[c] / n);
         }
-    for (int k = 0; k < 15; ++k) {
-        auto ms = [](const std::vector<double>& v) {
-            double m = 0, s2 = 0;
-            for (double x : v) m += x;
-            m /= static_cast<double>(v.size());
-            for (double x : v) s2 += (x - m) * (x - m);
-            return std::pair{m, s2 / static_cast<double>(v.size() - 1)};
-        };
-        const auto [ma, va] = ms(stats[k][0]);
-        const auto [mb, vb] = ms(stats[k][1]);
-        const double t = (ma - mb) / std::sqrt(va / seeds + vb / seeds);
-        EXPECT_LT(std::fabs(t), t_u2) << scene_name << " statistic " << k << ": hwss " << ma << " paper " << mb;
     }
+    return stats;
 }
 
-TEST(Statistical, U2PaperAgreesWithHwssAfterNtholdOnCornell) { expect_u2("cornell"); }
-TEST(Statistical, U2PaperAgreesWithHwssAfterNtholdOnFallingCubes) { expect_u2("falling-cubes"); }
+/// \brief Welch t of the difference of the means of two samples.
+double welch_t(const std::vector<double>& a, const std::vector<double>& b) {
+    auto ms = [](const std::vector<double>& v) {
+        double m = 0, s2 = 0;
+        for (double x : v) m += x;
+        m /= static_cast<double>(v.size());
+        for (double x : v) s2 += (x - m) * (x - m);
+        return std::pair{m, s2 / static_cast<double>(v.size() - 1)};
+    };
+    const auto [ma, va] = ms(a);
+    const auto [mb, vb] = ms(b);
+    return (ma - mb) / std::sqrt(va / static_cast<double>(a.size()) + vb / static_cast<double>(b.size()));
+}
+
+/// \brief `preset` over samples [from, spp) agrees with `hwss` over the same samples.
+void expect_agreement(const iris::scene_desc& s, const std::string& preset, int spp, int nthold, int from,
+                      const std::string& what) {
+    const auto a = region_statistics(s, "hwss", spp, nthold, from, 1);
+    const auto b = region_statistics(s, preset, spp, nthold, from, 1001);
+    for (std::size_t k = 0; k < 15; ++k)
+        EXPECT_LT(std::fabs(welch_t(a[k], b[k])), t_agree) << what << " statistic " << k;
+}
+
+// U2: after N_thold (samples [8, 24) with N_thold = 8, α = 1) paper is hwss.
+TEST(Statistical, U2PaperAgreesWithHwssAfterNtholdOnCornell) {
+    expect_agreement(iris::scene::builtin_scene("cornell"), "paper", 24, 8, 8, "cornell");
+}
+TEST(Statistical, U2PaperAgreesWithHwssAfterNtholdOnFallingCubes) {
+    expect_agreement(iris::scene::builtin_scene("falling-cubes"), "paper", 24, 8, 8, "falling-cubes");
+}
+
+enum class glass { rough, non_dispersive };
+
+/// \brief falling-cubes with its glass made rough (GGX α = 0.3) or non-dispersive (n = n_d).
+iris::scene_desc falling_cubes_variant(glass g) {
+    auto s = iris::scene::builtin_scene("falling-cubes");
+    for (auto& m : s.materials)
+        if (auto* d = std::get_if<iris::material::dielectric>(&m)) {
+            if (g == glass::rough) d->roughness = 0.3f;
+            if (g == glass::non_dispersive) d->ior = iris::constant_ior{iris::refractive_index(d->ior, 587.5618)};
+        }
+    return s;
+}
+
+// U3, first half: without specular dispersion the propagated term is exact, so paper is
+// unbiased at every iteration: samples [0, 24) with N_thold = 64 all have α < 0.4.
+TEST(Statistical, U3PaperIsUnbiasedBeforeNtholdWithoutSpecularDispersion) {
+    const auto rough = falling_cubes_variant(glass::rough);
+    ASSERT_FALSE(rough.features().dispersive_specular);
+    ASSERT_TRUE(rough.features().dispersive_rough);
+    expect_agreement(rough, "paper", 24, 64, 0, "rough dispersive glass");
+    const auto plain = falling_cubes_variant(glass::non_dispersive);
+    ASSERT_FALSE(plain.features().dispersive());
+    expect_agreement(plain, "paper", 24, 64, 0, "non-dispersive glass");
+}
+
+// U3, second half — with specular dispersion paper is biased while α < 1 and the bias
+// shrinks as α grows — has no test: on the built-in scenes the bias is below what 16 seeds
+// can resolve (falling-cubes at 24×18, α < 0.25: image-mean ΔY = −0.02, Welch t = −1.8;
+// with an exaggerated Cauchy B = 0.05 µm² still t = −1.7), and the paper's own argument is
+// that it is small. docs/results.md shows where it lives instead (bias maps).
 
 // ---- convergence: MSE ∝ 1/N for an unbiased configuration ------------------------------
 // hwss on cornell (24×24) at 4…64 spp against a 4096-spp reference. The log-log slope's
