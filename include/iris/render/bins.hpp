@@ -50,14 +50,9 @@ public:
     constexpr float lambda_min() const noexcept { return m_min; }
     constexpr float bin_width() const noexcept { return m_width; }
 
-    /// \brief λ_b = λmin + (b + u)Δ for every bin (pdf 1: the bins are not importance sampled).
-    constexpr sampled_wavelengths<Bins> wavelengths(float u) const noexcept {
-        sampled_wavelengths<Bins> w;
-        for (std::size_t b = 0; b < Bins; ++b) {
-            w.lambda(b) = m_min + (static_cast<float>(b) + u) * m_width;
-            w.pdf(b) = 1.0f;
-        }
-        return w;
+    /// \brief λ_b = λmin + (b + u)Δ.
+    constexpr float lambda(std::size_t b, float u) const noexcept {
+        return m_min + (static_cast<float>(b) + u) * m_width;
     }
 
     /// \brief The lattice position of jitter u ∈ [0, 1). (u·K may round up to K in float

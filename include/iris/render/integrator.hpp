@@ -78,11 +78,10 @@ public:
 
         // B-term bins (only while the restriction is not yet relaxed)
         const bool use_bins = propagates && alpha < 1.0f;
-        sampled_wavelengths<Bins> wb;
+        float jitter = 0.0f;
         bin_position bp;
         if (use_bins) {
-            const float jitter = rng.next();
-            wb = m_bins.lattice.wavelengths(jitter);
+            jitter = rng.next();
             bp = m_bins.lattice.position(jitter);
         }
 
@@ -213,7 +212,7 @@ public:
         if (use_bins && !lb.is_zero()) {
             // Σ_b (1 − r_α(λ_b)) Δλ L_b · cmf(λ_b)
             sampled_spectrum<Bins> w;
-            for (std::size_t b = 0; b < Bins; ++b) w[b] = 1.0f - dist.restriction(wb[b]);
+            for (std::size_t b = 0; b < Bins; ++b) w[b] = 1.0f - dist.restriction(m_bins.lattice.lambda(b, jitter));
             w *= lb * m_bins.lattice.bin_width();
             v.x += static_cast<double>((w * m_bins.x_bar(bp)).sum());
             v.y += static_cast<double>((w * m_bins.y_bar(bp)).sum());
