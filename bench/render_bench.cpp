@@ -1,0 +1,80 @@
+// Whole-renderer throughput (samples/s, rays/s) through iris::renderer on built-in scenes:
+// presets side by side (what the B term of PropagateUnused costs per sample), 1 vs 2
+// threads, and the dispersive vs non-dispersive instantiation on a scene without
+// dispersion (what the feature summary's choice saves). Compiles to nothing without
+// iris::renderer and iris::scene (bench/CMakeLists.txt links them when they exist).
+// Run: build/release/bench/iris-bench --benchmark_filter=Render
+#if __has_include(<iris/renderer/renderer.hpp>) && __has_include(<iris/scene/scene.hpp>)
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <string>
+#include <variant>
+
+#include <iris/renderer/renderer.hpp>
+#include <iris/scene/scene.hpp>
+
+namespace {
+
+/// \brief Built-in scenes, plus "cornell-plain": cornell with its glass made
+/// non-dispersive (n = n_d), so the feature summary picks the non-dispersive instantiation.
+const iris::scene_desc& scene(const std::string& name) {
+    static std::map<std::string, iris::scene_desc> cache;
+    if (auto it = cache.find(name); it != cache.end()) return it->second;
+    iris::scene_desc s;
+    if (name == "cornell-plain") {
+        s = iris::scene::builtin_scene("cornell");
+        for (auto& m : s.materials)
+            if (auto* d = std::get_if<iris::material::dielectric>(&m))
+                d->ior = iris::constant_ior{iris::refractive_index(d->ior, 587.5618)};
+    } else {
+        s = iris::scene::builtin_scene(name);
+    }
+    return cache.emplace(name, std::move(s)).first->second;
+}
+
+void render(benchmark::State& state, const std::string& scene_name, const std::string& preset, int threads,
+            bool force_dispersive) {
+    const auto& s = scene(scene_name);
+    iris::renderer::options o;
+    o.preset = preset;
+    o.width = 128;
+    o.height = 128;
+    o.spp = 4;
+    o.threads = threads;
+    o.nthold = 1 << 20;  // α stays < 1: PropagateUnused evaluates its B term on every sample
+    o.force_dispersive = force_dispersive;
+    double samples = 0, rays = 0;
+    for (auto _ : state) {
+        iris::film f(1, 1);
+        const auto st = iris::renderer::render(s, o, f);
+        samples += static_cast<double>(st.samples);
+        rays += static_cast<double>(st.rays);
+        benchmark::DoNotOptimize(f.mean(0));
+    }
+    state.counters["samples/s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
+    state.counters["rays/s"] = benchmark::Counter(rays, benchmark::Counter::kIsRate);
+}
+
+void register_all() {
+    for (const char* sc : {"cornell", "falling-cubes"})
+        for (const char* p : {"hwss", "paper", "restrict-only", "scaled-pdf", "hwss-c1", "hwss-c8"})
+            for (int t : {1, 2})
+                benchmark::RegisterBenchmark((std::string("Render/") + sc + "/" + p + "/threads:" + std::to_string(t)).c_str(),
+                                             [=](benchmark::State& st) { render(st, sc, p, t, false); })
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime()
+                    ->MinTime(1.0);
+    for (const char* p : {"hwss", "paper"})
+        for (bool force : {false, true})
+            benchmark::RegisterBenchmark((std::string("Render/cornell-plain/") + p + (force ? "/dispersive-instantiation" : "/plain-instantiation")).c_str(),
+                                         [=](benchmark::State& st) { render(st, "cornell-plain", p, 1, force); })
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime()
+                ->MinTime(1.0);
+}
+
+const bool registered = (register_all(), true);
+
+}  // namespace
+#endif
