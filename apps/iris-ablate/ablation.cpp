@@ -115,11 +115,17 @@ ablation_result run_ablation(const ablation_options& opt) {
     } catch (const std::exception& e) {
         throw usage_error(e.what());
     }
+    const int w = opt.width > 0 ? opt.width : scene.camera.width;
+    const int h = opt.height > 0 ? opt.height : scene.camera.height;
+    // SSIM (results.csv, the plots) needs one whole window; below it the SSIM plots have
+    // no defined point and gnuplot fails after the whole run
+    if (w < ssim_window || h < ssim_window)
+        throw usage_error(fmt::format("the image must be at least {0}x{0} pixels (one SSIM window), got {1}x{2}",
+                                      ssim_window, w, h));
+    (void)crop_rectangle(opt.crop, w, h);  // a bad --crop fails now, not after the renders
     std::error_code ec;
     fs::create_directories(opt.out / "snapshots", ec);
     if (ec) throw usage_error(fmt::format("cannot create output directory '{}': {}", opt.out.string(), ec.message()));
-    const int w = opt.width > 0 ? opt.width : scene.camera.width;
-    const int h = opt.height > 0 ? opt.height : scene.camera.height;
     const int max_spp = opt.spp.back();
 
     // work estimate in passes (time-equal renders count their largest budget's passes as they go)

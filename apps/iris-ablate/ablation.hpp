@@ -43,7 +43,16 @@ struct ablation_result {
     std::vector<std::pair<std::string, image>> first_snapshots;  ///< per preset, seed 0, smallest spp
 };
 
+/// \brief Validate the options against the scene (image size, --crop), then render.
+/// \throws usage_error for bad options, before anything is rendered or written.
 ablation_result run_ablation(const ablation_options& opt);
+
+/// \brief The rectangle of the side-by-side crops PNG in a width x height image: `crop`
+/// ("x,y,w,h", integers, inside the image) or, if empty, the centre half. \throws usage_error
+struct crop_rect {
+    int x = 0, y = 0, w = 0, h = 0;
+};
+crop_rect crop_rectangle(const std::string& crop, int width, int height);
 
 /// \brief results.csv, plots, crops, summary.md in opt.out.
 void write_report(const ablation_options& opt, const ablation_result& r);

@@ -90,18 +90,7 @@ void metric_plot(const grouped& g, const std::vector<std::string>& order, bool s
 /// by pixel replication to at least 160 px tall so the noise is visible).
 void write_crops(const ablation_options& opt, const ablation_result& r, const fs::path& out) {
     const image& ref = r.reference;
-    int cx = ref.width() / 4, cy = ref.height() / 4, cw = ref.width() / 2, ch = ref.height() / 2;
-    if (!opt.crop.empty()) {
-        std::stringstream ss(opt.crop);
-        std::string part;
-        std::vector<int> v;
-        while (std::getline(ss, part, ',')) v.push_back(static_cast<int>(parse_number(part, "--crop entry")));
-        if (v.size() != 4 || v[0] < 0 || v[1] < 0 || v[2] < 1 || v[3] < 1 || v[0] + v[2] > ref.width() ||
-            v[1] + v[3] > ref.height())
-            throw usage_error(fmt::format("--crop '{}' must be x,y,w,h inside the {}x{} image", opt.crop, ref.width(),
-                                          ref.height()));
-        cx = v[0], cy = v[1], cw = v[2], ch = v[3];
-    }
+    const auto [cx, cy, cw, ch] = crop_rectangle(opt.crop, ref.width(), ref.height());
     const int scale = std::max(1, 160 / std::max(1, ch));
     const int gap = 4;
     const int panels = 1 + static_cast<int>(r.first_snapshots.size());
@@ -117,6 +106,19 @@ void write_crops(const ablation_options& opt, const ablation_result& r, const fs
 }
 
 }  // namespace
+
+crop_rect crop_rectangle(const std::string& crop, int width, int height) {
+    if (crop.empty()) return {width / 4, height / 4, width / 2, height / 2};
+    std::stringstream ss(crop);
+    std::string part;
+    std::vector<double> v;
+    while (std::getline(ss, part, ',')) v.push_back(parse_number(part, "--crop entry"));
+    const bool integers = std::all_of(v.begin(), v.end(), [](double x) { return x == std::floor(x) && std::abs(x) < 1e9; });
+    if (v.size() != 4 || !integers || v[0] < 0 || v[1] < 0 || v[2] < 1 || v[3] < 1 || v[0] + v[2] > width ||
+        v[1] + v[3] > height)
+        throw usage_error(fmt::format("--crop '{}' must be integers x,y,w,h inside the {}x{} image", crop, width, height));
+    return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3])};
+}
 
 void write_report(const ablation_options& opt, const ablation_result& r) {
     const std::string scene = r.spp_rows.empty() ? opt.scene : r.spp_rows.front().scene;

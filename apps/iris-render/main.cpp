@@ -10,13 +10,16 @@
 // viewer that reloads it (e.g. tev) shows it converge. Ctrl-C stops after the current
 // pass, writes the last complete image (with its true spp in the metadata) and exits 130.
 // Bad arguments: one line on stderr, exit 2, nothing written.
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
 
 #include <unistd.h>
 
@@ -48,12 +51,23 @@ struct args {
 void check_writable(const std::string& path, const char* what) {
     if (path.empty()) return;
     const fs::path p(path);
+    if (fs::is_directory(p))
+        throw iris::app::usage_error(fmt::format("cannot write {} '{}': it is a directory", what, path));
     const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     if (!fs::is_directory(dir))
         throw iris::app::usage_error(fmt::format("cannot write {} '{}': directory '{}' does not exist", what, path,
                                                  dir.string()));
     if (::access(dir.c_str(), W_OK) != 0)
         throw iris::app::usage_error(fmt::format("cannot write {} '{}': directory is not writable", what, path));
+}
+
+/// \brief Refuse an output name whose extension says another format (an EXR called
+/// out.png, or --png out.exr overwriting the EXR), as iris-image does.
+void require_extension(const std::string& path, std::string_view ext, const char* option) {
+    if (path.empty()) return;
+    std::string e = fs::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (e != ext) throw iris::app::usage_error(fmt::format("{} '{}' must end in {}", option, path, ext));
 }
 
 std::string eta(double seconds) {
@@ -122,6 +136,13 @@ int run_render(const args& a) {
     } catch (const std::invalid_argument& e) {
         throw iris::app::usage_error(e.what());
     }
+    require_extension(a.out, ".exr", "-o");
+    require_extension(a.png, ".png", "--png");
+    const auto same_file = [](const std::string& x, const std::string& y) {
+        return !x.empty() && !y.empty() && fs::absolute(x).lexically_normal() == fs::absolute(y).lexically_normal();
+    };
+    if (same_file(a.stats, a.out) || same_file(a.stats, a.png))
+        throw iris::app::usage_error(fmt::format("--stats '{}' would overwrite an output image", a.stats));
     check_writable(a.out, "image");
     check_writable(a.png, "PNG");
     check_writable(a.stats, "stats");
