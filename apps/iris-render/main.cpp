@@ -104,7 +104,7 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
                         {"spp", st.spp_done},
                         {"width", st.width},
                         {"height", st.height},
-                        {"threads", a.threads},
+                        {"threads", st.threads},
                         {"seed", a.seed},
                         {"nthold", a.nthold},
                         {"seconds", st.seconds},
@@ -202,6 +202,10 @@ int run_render(const args& a) {
     if (tty) fmt::print(stderr, "\n");
     if (st.spp_done > 0) write_outputs(scene, a, f, st);
     write_stats(scene, a, st);
+    if (st.spp_done == 0) {  // interrupted during the first pass: there is no image to write
+        fmt::print("{}: not written, interrupted before the first pass completed\n", a.out);
+        return 130;
+    }
     fmt::print("{}: {} with {} ({}), {}x{}, {} spp in {:.2f} s: {:.3f} Msamples/s, {:.2f} Mrays/s, {} NaN/Inf samples dropped{}\n",
                a.out, scene.name, a.preset, st.config_name, st.width, st.height, st.spp_done, st.seconds,
                st.seconds > 0 ? static_cast<double>(st.samples) / st.seconds * 1e-6 : 0.0,

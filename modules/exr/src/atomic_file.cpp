@@ -24,8 +24,9 @@ void write_atomically(const std::filesystem::path& target,
     std::error_code ec;
     fs::rename(tmp, target, ec);
     if (ec) {
+        const std::string why = ec.message();  // before the cleanup reuses `ec`
         fs::remove(tmp, ec);
-        throw error("cannot replace '" + target.string() + "': " + ec.message());
+        throw error("cannot replace '" + target.string() + "': " + why);
     }
 }
 

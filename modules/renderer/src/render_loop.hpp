@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -27,7 +28,8 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
     const int tiles_x = (w + ts - 1) / ts, tiles_y = (ht + ts - 1) / ts;
     const int tiles = tiles_x * tiles_y;
     std::vector<std::uint64_t> tile_rays(static_cast<std::size_t>(tiles));
-    tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
+    tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::info::default_concurrency());
+    st.threads = arena.max_concurrency();
 
     for (int i = 0; i < opt.spp; ++i) {
         if (h.cancel && h.cancel->load()) {

@@ -42,6 +42,7 @@ struct status {
     std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"
     bool dispersive_instantiation = false;
     int width = 0, height = 0;
+    int threads = 0;               ///< worker threads actually used
     int spp_done = 0;              ///< complete passes (every pixel has this many samples)
     int spp_total = 0;
     double seconds = 0.0;          ///< wall-clock time spent in passes
