@@ -51,14 +51,16 @@ public:
         if (lambda_nm >= m_lambda.back())
             return lambda_nm == m_lambda.back() || m_mode == outside::clamp ? m_value.back() : 0.0;
         std::size_t i;
-        if (m_uniform) {
-            const double x = (lambda_nm - m_lambda.front()) / m_step;
+        double t;
+        if (m_uniform) {  // the hot path (every CIE table): one multiply, no search, no division
+            const double x = (lambda_nm - m_lambda.front()) * m_inv_step;
             i = std::min(static_cast<std::size_t>(x), m_lambda.size() - 2);
+            t = std::min(1.0, x - static_cast<double>(i));
         } else {
             i = static_cast<std::size_t>(std::upper_bound(m_lambda.begin(), m_lambda.end(), lambda_nm) -
                                          m_lambda.begin()) - 1;
+            t = (lambda_nm - m_lambda[i]) / (m_lambda[i + 1] - m_lambda[i]);
         }
-        const double t = (lambda_nm - m_lambda[i]) / (m_lambda[i + 1] - m_lambda[i]);
         // (1 − t)·a + t·b never overflows for finite a, b (a + t·(b − a) can).
         return (1.0 - t) * m_value[i] + t * m_value[i + 1];
     }
@@ -91,6 +93,7 @@ private:
                                             std::to_string(i) + ")");
         }
         m_step = (m_lambda.back() - m_lambda.front()) / static_cast<double>(m_lambda.size() - 1);
+        m_inv_step = 1.0 / m_step;
         m_uniform = true;
         for (std::size_t i = 1; i < m_lambda.size() && m_uniform; ++i)
             m_uniform = std::abs((m_lambda[i] - m_lambda[i - 1]) - m_step) <= 1e-9 * m_step;
@@ -100,6 +103,7 @@ private:
     std::vector<double> m_value;
     outside m_mode = outside::zero;
     double m_step = 1.0;
+    double m_inv_step = 1.0;
     bool m_uniform = false;
 };
 
