@@ -31,7 +31,7 @@ wait
 # where the bias is: paper with α ≈ 0 on every sample against the cached reference
 "$apps/iris-render/iris-render" falling-cubes --preset paper --nthold 1000000000 --spp 2048 "${cubes[@]}" \
   -o "$out/paper-alpha0.exr"
-ref=$(ls "${XDG_CACHE_HOME:-$HOME/.cache}"/iris/falling-cubes-*-160x120-ref16384-*.exr | head -1)
+ref=$(ls -t "${XDG_CACHE_HOME:-$HOME/.cache}"/iris/falling-cubes-*-160x120-ref16384-*.exr | head -1)  # the newest: this build's
 mkdir -p docs/results/bias
 "$apps/iris-image/iris-image" convert "$ref" -o docs/results/bias/reference.png
 "$apps/iris-image/iris-image" convert "$out/paper-alpha0.exr" -o docs/results/bias/paper-alpha0.png

@@ -5,8 +5,8 @@
 //       [--width W --height H (scene's)] [--threads T=all] [--nthold N=512]
 //       [--cache DIR=~/.cache/iris] [--crop x,y,w,h (centre)] -o DIR
 //
-// Renders (or loads from the cache, keyed by scene, size, seed, reference spp and code
-// version) an unbiased `hwss` reference, renders each preset progressively once per seed
+// Renders (or loads from the cache, keyed by scene content, size, seed, reference spp and code
+// — this executable's bytes) an unbiased `hwss` reference, renders each preset progressively once per seed
 // with snapshots at the requested spp (and wall-clock budgets), and writes DIR/results.csv
 // (scene,preset,seed,spp,seconds,mse,relmse,ssim), DIR/results_time.csv, the snapshot
 // EXRs, SSIM/MSE plots against spp and seconds, crops at the smallest spp side by side,
