@@ -6,7 +6,7 @@
 // for any float λ, and every sample — from `sample`, `sample_with_pdf` and the C = 4
 // hero rotation, for any float u — lies inside the domain with pdf(λ) > 0.
 #include <cmath>
-#include <optional>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -27,9 +27,11 @@ float any_or(iris::fuzz::input& in, double lo, double hi) {
 template <class Base, class Kernel>
 void check(const Base& base, const Kernel& kernel, float alpha, iris::spectral_domain d, float cell,
            iris::fuzz::input& in) {
-    std::optional<iris::restricted_distribution<Base, Kernel>> dist;
+    // (a unique_ptr, not an optional: GCC 12 warns "may be used uninitialized" about an
+    // optional holding the distribution's shared table)
+    std::unique_ptr<iris::restricted_distribution<Base, Kernel>> dist;
     try {
-        dist.emplace(base, kernel, alpha, d, cell);
+        dist = std::make_unique<iris::restricted_distribution<Base, Kernel>>(base, kernel, alpha, d, cell);
     } catch (const std::invalid_argument&) {
         if (d.valid()) fail("a valid domain was rejected");
         return;
