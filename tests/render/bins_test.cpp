@@ -89,3 +89,33 @@ TEST(BinTables, OneEntryPerMaterialAndEmitter) {
 }
 
 }  // namespace
+
+namespace {
+
+// The hero wavelengths' lattice tables reproduce the scene's tables exactly (to float
+// rounding) where their knots are on the 1 nm lattice, and fall back to the table itself
+// where they are not: the hero path never sees an interpolation the scene did not ask for.
+TEST(LatticeSpectrum, ExactOnTheLatticeAndFallsBackOffIt) {
+    iris::counter_rng rng(3, 0, 0);
+    auto check = [&](const iris::tabulated_spectrum& s, float lo, float hi, bool expect_lattice, const char* what) {
+        const iris::lattice_spectrum l(s, lo, hi);
+        EXPECT_EQ(l.exact_lattice(), expect_lattice) << what;
+        for (int i = 0; i < 2000; ++i) {
+            const float u = i == 0 ? 0.0f : i == 1 ? 1.0f : rng.next();
+            const iris::sampled_wavelengths<1> wl({lo + u * (hi - lo)}, {1.0f});
+            const double want = s(static_cast<double>(wl[0]));
+            ASSERT_NEAR(l(wl)[0], want, 1e-6 * std::fabs(want) + 1e-9) << what << " at " << wl[0];
+        }
+    };
+    check(iris::find_illuminant("D65")->spectrum(), 380.0f, 780.0f, true, "D65 (5 nm)");
+    check(iris::find_illuminant("LED-B1")->spectrum(), 380.0f, 780.0f, true, "LED-B1 (1 nm)");
+    check(iris::find_illuminant("A")->spectrum(), 400.0f, 700.0f, true, "A on 400-700");
+    // knots off the lattice, a table that does not cover the domain, a fractional domain
+    std::vector<double> ramp(50);
+    for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = 0.1 + 0.01 * static_cast<double>(i * i % 7);
+    check(iris::tabulated_spectrum::uniform(360.5, 10.0, ramp), 380.0f, 780.0f, false, "knots at .5 nm");
+    check(iris::tabulated_spectrum::uniform(400.0, 5.0, ramp), 380.0f, 780.0f, false, "table starts inside");
+    check(iris::find_illuminant("D65")->spectrum(), 380.0f, 779.5f, false, "fractional domain");
+}
+
+}  // namespace

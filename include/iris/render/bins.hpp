@@ -19,12 +19,15 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 #include "iris/render/scene.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/sampled.hpp"
+#include "iris/spectrum/spectrum.hpp"
+#include "iris/spectrum/tabulated.hpp"
 
 namespace iris {
 
@@ -99,6 +102,72 @@ public:
 
 private:
     std::array<std::array<float, Bins>, K + 1> m_rows{};
+};
+
+/// \brief A tabulated spectrum re-tabulated in float on a 1 nm lattice over the domain,
+/// for the C hero-rotated wavelengths (any λ in the domain): one multiply, one truncation
+/// and one blend per wavelength instead of the double-precision table walk. Used only
+/// where it is exact — the table covers the domain and every knot inside it lies on the
+/// lattice (all of iris's 1 nm and 5 nm tables on an integer-nm domain); otherwise it
+/// evaluates the original table, so the hero path never sees an approximation.
+class lattice_spectrum {
+public:
+    lattice_spectrum() = default;
+    lattice_spectrum(const tabulated_spectrum& s, float lambda_min, float lambda_max) : m_source(&s), m_min(lambda_min) {
+        const double lo = lambda_min, hi = lambda_max;
+        const auto knots = s.wavelengths();
+        if (knots.empty() || !(hi > lo) || knots.front() > lo || knots.back() < hi) return;
+        if (std::fabs((hi - lo) - std::round(hi - lo)) > 1e-9) return;  // λmax must be a node
+        for (double k : knots)
+            if (k > lo && k < hi && std::fabs(k - std::round(k - lo) - lo) > 1e-9) return;
+        const auto n = static_cast<std::size_t>(std::ceil(hi - lo)) + 1;
+        m_values.resize(n + 1);  // one spare node past λmax: the blend at λmax reads it with weight 0
+        for (std::size_t i = 0; i <= n; ++i) m_values[i] = static_cast<float>(s(std::min(hi, lo + static_cast<double>(i))));
+    }
+
+    /// \brief The spectrum at N wavelengths inside the domain.
+    template <std::size_t N>
+    sampled_spectrum<N> operator()(const sampled_wavelengths<N>& wl) const noexcept {
+        if (m_values.empty()) return m_source ? sample(*m_source, wl) : sampled_spectrum<N>{};
+        sampled_spectrum<N> out;
+        const float last = static_cast<float>(m_values.size() - 2);
+        const float* v = m_values.data();
+        for (std::size_t k = 0; k < N; ++k) {
+            const float x = std::min(std::max(wl[k] - m_min, 0.0f), last);  // minss/maxss, no branches
+            const int i = static_cast<int>(x);  // to int, not size_t: one instruction on x86-64
+            const float t = x - static_cast<float>(i);
+            out[k] = (1.0f - t) * v[i] + t * v[i + 1];
+        }
+        return out;
+    }
+
+    bool exact_lattice() const noexcept { return !m_values.empty(); }
+
+private:
+    const tabulated_spectrum* m_source = nullptr;
+    float m_min = 0.0f;
+    std::vector<float> m_values;
+};
+
+/// \brief The spectra the hero wavelengths read at every vertex, as `lattice_spectrum`s:
+/// per material its reflectance (diffuse, conductor; none for dielectrics), per emitter its
+/// radiance, and the environment.
+struct hero_tables {
+    std::vector<lattice_spectrum> albedo;
+    std::vector<lattice_spectrum> emission;
+    lattice_spectrum environment;
+
+    hero_tables() = default;
+    explicit hero_tables(const scene_desc& scene) {
+        const float lo = scene.lambda_min, hi = scene.lambda_max;
+        for (const material_desc& m : scene.materials) {
+            if (const auto* d = std::get_if<material::diffuse>(&m)) albedo.emplace_back(d->reflectance, lo, hi);
+            else if (const auto* c = std::get_if<material::conductor>(&m)) albedo.emplace_back(c->reflectance, lo, hi);
+            else albedo.emplace_back();
+        }
+        for (const emitter_desc& e : scene.emitters) emission.emplace_back(e.radiance, lo, hi);
+        if (scene.environment) environment = lattice_spectrum(scene.environment->radiance, lo, hi);
+    }
 };
 
 /// \brief Every spectrum the B term reads, tabulated once per render: per material its

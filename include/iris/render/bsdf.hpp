@@ -246,12 +246,15 @@ sampled_spectrum<N> bsdf_pdf(const material_desc& mat, const glm::vec3& n, const
 
 /// \brief Sample a direction with the hero wavelength wl[0]; report f·|cos| and pdf for
 /// every wavelength along it. `u_lobe` picks reflection/transmission, `u` the direction.
+/// `albedo()` gives the reflectance of a diffuse or conductor material at `wl` (the
+/// integrator reads it from a lattice table; `bsdf_sample_hero` evaluates the scene's).
 /// Returns nothing when the sample is absorbed or degenerate.
-template <std::size_t N>
-std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
-                                               const sampled_wavelengths<N>& wl, float u_lobe, glm::vec2 u) noexcept {
+template <std::size_t N, class Albedo>
+std::optional<bsdf_sample<N>> bsdf_sample_hero_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
+                                                     const sampled_wavelengths<N>& wl, float u_lobe, glm::vec2 u,
+                                                     Albedo&& albedo) noexcept {
     bsdf_sample<N> s;
-    if (const auto* d = std::get_if<material::diffuse>(&mat)) {
+    if (std::holds_alternative<material::diffuse>(mat)) {
         const float co = glm::dot(n, wo);
         if (co == 0.0f) return std::nullopt;
         // cosine-weighted hemisphere on wo's side (Malley: concentric disk → lift)
@@ -260,14 +263,14 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const g
         const frame fr = frame::from_normal(co > 0.0f ? n : -n);
         s.wi = glm::normalize(fr.to_world({x, y, z}));
         if (!(z > 0.0f)) return std::nullopt;
-        s.f_cos = sample(d->reflectance, wl) * (z * detail::inv_pi);
+        s.f_cos = sampled_spectrum<N>(albedo()) * (z * detail::inv_pi);
         s.pdf = sampled_spectrum<N>(z * detail::inv_pi);
         s.kind = lobe::diffuse;
         return s;
     }
-    if (const auto* c = std::get_if<material::conductor>(&mat)) {
+    if (std::holds_alternative<material::conductor>(mat)) {
         s.wi = reflect_about(wo, n);
-        s.f_cos = sample(c->reflectance, wl);
+        s.f_cos = sampled_spectrum<N>(albedo());
         s.pdf = sampled_spectrum<N>(1.0f);
         s.kind = lobe::reflection;
         s.delta = true;
@@ -327,6 +330,16 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const g
     if (!(s.pdf[0] > 0.0f)) return std::nullopt;
     (void)dispersive;  // rough events keep every wavelength: all p(ωi|λ_k) are finite (SPEC §2)
     return s;
+}
+
+/// \brief `bsdf_sample_hero_given` with the material's reflectance evaluated at `wl`.
+template <std::size_t N>
+std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
+                                               const sampled_wavelengths<N>& wl, float u_lobe, glm::vec2 u) noexcept {
+    return bsdf_sample_hero_given(mat, n, wo, wl, u_lobe, u, [&] {
+        if (const auto* d = std::get_if<material::diffuse>(&mat)) return sample(d->reflectance, wl);
+        return sample(std::get<material::conductor>(mat).reflectance, wl);
+    });
 }
 
 /// \brief The weight of a delta event at other wavelengths (the B-term bins) when they

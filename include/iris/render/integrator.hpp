@@ -16,6 +16,9 @@
 /// per sample shared by all bins, so each λ_b is uniform in its bin). The spectra of the
 /// B term are read from tables on the bins' lattice built once per integrator
 /// (iris/render/bins.hpp): each is one blend of two rows, not a per-bin table lookup.
+/// The C wavelengths read reflectances and emitters from float tables on an exact 1 nm
+/// lattice (`hero_tables`, same header), falling back to the scene's tables where the
+/// lattice would not reproduce them exactly.
 ///
 /// `Dispersive = false` is the instantiation for scenes without λ-dependent directions:
 /// there every p(x̄|λ_k) equals the hero's, ρ ≡ 1, so no per-wavelength pdf is evaluated
@@ -63,7 +66,7 @@ public:
     static constexpr std::size_t bins = Bins;
 
     path_integrator(const scene_desc& scene, const light_sampler& lights, path_settings settings = {})
-        : m_scene(scene), m_lights(lights), m_settings(settings) {
+        : m_scene(scene), m_lights(lights), m_settings(settings), m_hero(scene) {
         if constexpr (propagates) m_bins = bin_tables<Bins>(scene);
     }
 
@@ -97,7 +100,7 @@ public:
             if (!hit) {
                 if (m_scene.environment) {  // not light-sampled: BSDF sampling is its only strategy
                     const float denom = sum_rho(rho);
-                    lc += beta * sample(m_scene.environment->radiance, wl) / denom;
+                    lc += beta * m_hero.environment(wl) / denom;
                     if (use_bins) lb += tb * m_bins.environment(bp);
                 }
                 break;
@@ -125,13 +128,15 @@ public:
                         denom = sum_rho(rho) + (pl / prev_pdf) * sum_rho(rho_before);
                         w_hero = prev_pdf / (prev_pdf + pl);
                     }
-                    lc += beta * sample(em.radiance, wl) / denom;
+                    lc += beta * m_hero.emission[*shape.emitter](wl) / denom;
                     if (use_bins) lb += tb * m_bins.emission[*shape.emitter](bp) * w_hero;
                 }
             }
             if (depth >= m_settings.max_depth) break;
             const material_desc& mat = m_scene.materials[shape.material];
             const bool delta = is_delta(mat);
+            const auto hero_albedo = [&] { return m_hero.albedo[shape.material](wl); };
+            const auto hero_eta = [&] { return detail::etas(std::get<material::dielectric>(mat).ior, wl); };
             const auto bin_albedo = [&] { return m_bins.albedo[shape.material](bp); };
             const auto bin_eta = [&] { return m_bins.eta[shape.material](bp); };
 
@@ -147,7 +152,7 @@ public:
                     const emitter_desc& em = m_scene.emitters[ls->emitter];
                     const bool emits = em.two_sided ? cos_l != 0.0f : cos_l > 0.0f;
                     if (emits && d > 0.0f) {
-                        const sampled_spectrum<C> f = bsdf_eval(mat, ng, wo, wi, wl);
+                        const sampled_spectrum<C> f = bsdf_eval_given<C>(mat, ng, wo, wi, hero_albedo, hero_eta);
                         if (!f.is_zero()) {
                             ++out.rays;
                             const glm::vec3 o2 = offset_ray_origin(p, ng, wi);
@@ -156,7 +161,7 @@ public:
                                 const sampled_spectrum<C> pb = bsdf_pdfs(mat, ng, wo, wi, wl);
                                 float denom = 0.0f;
                                 for (std::size_t k = 0; k < C; ++k) denom += rho_k(rho, k) * (1.0f + pb[k] / pl);
-                                lc += beta * f * sample(em.radiance, wl) / (pl * denom);
+                                lc += beta * f * m_hero.emission[ls->emitter](wl) / (pl * denom);
                                 if (use_bins) {
                                     const float w_hero = pl / (pl + pb[0]);
                                     lb += tb * bsdf_eval_given<Bins>(mat, ng, wo, wi, bin_albedo, bin_eta) *
@@ -170,7 +175,7 @@ public:
 
             // BSDF sampling with the hero wavelength
             const float u_lobe = rng.next();
-            const auto bs = bsdf_sample_hero(mat, ng, wo, wl, u_lobe, rng.next2());
+            const auto bs = bsdf_sample_hero_given(mat, ng, wo, wl, u_lobe, rng.next2(), hero_albedo);
             if (!bs) break;
             const float p0 = bs->pdf[0];
             if (!(p0 > 0.0f)) break;
@@ -255,6 +260,7 @@ private:
     const scene_desc& m_scene;
     const light_sampler& m_lights;
     path_settings m_settings;
+    hero_tables m_hero;       ///< the spectra the C wavelengths read, on an exact 1 nm lattice
     bin_tables<Bins> m_bins;  ///< empty unless the bias policy propagates
 };
 
