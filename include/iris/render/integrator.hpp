@@ -56,7 +56,20 @@ struct path_settings {
     int rr_start_depth = 3;  ///< Russian roulette from this depth on
 };
 
-template <class Config, bool Dispersive, std::size_t Bins = 80>
+namespace detail {
+/// \brief The B term's bin count of a config: its bias policy's `bins` (80 — 5 nm on
+/// 380–780 nm — for PropagateUnused; fewer for `propagate_coarse<B>`), 80 otherwise.
+template <class Config>
+constexpr std::size_t bins_of() noexcept {
+    if constexpr (requires { Config::bias_type::bins; }) return Config::bias_type::bins;
+    else return 80;
+}
+/// \brief Lattice steps per bin so that the lattice is 1 nm on 380–780 nm when the bin
+/// count divides 400 (exact for iris's 1 nm and 5 nm tables; see bins.hpp).
+constexpr std::size_t lattice_steps(std::size_t bins) noexcept { return bins >= 400 ? 1 : 400 / bins; }
+}  // namespace detail
+
+template <class Config, bool Dispersive, std::size_t Bins = detail::bins_of<Config>()>
 class path_integrator {
 public:
     static constexpr std::size_t C = Config::wavelength_count;
@@ -67,7 +80,7 @@ public:
 
     path_integrator(const scene_desc& scene, const light_sampler& lights, path_settings settings = {})
         : m_scene(scene), m_lights(lights), m_settings(settings), m_hero(scene) {
-        if constexpr (propagates) m_bins = bin_tables<Bins>(scene);
+        if constexpr (propagates) m_bins = bin_tables<Bins, detail::lattice_steps(Bins)>(scene);
     }
 
     /// \brief Trace one path from `origin` along unit `dir`. `dist` is the restricted
@@ -261,7 +274,7 @@ private:
     const light_sampler& m_lights;
     path_settings m_settings;
     hero_tables m_hero;       ///< the spectra the C wavelengths read, on an exact 1 nm lattice
-    bin_tables<Bins> m_bins;  ///< empty unless the bias policy propagates
+    bin_tables<Bins, detail::lattice_steps(Bins)> m_bins;  ///< empty unless the bias policy propagates
 };
 
 }  // namespace iris

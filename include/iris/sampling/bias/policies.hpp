@@ -5,7 +5,10 @@
 /// r(λ) numerator factor, so r and 1 − r partition unity).
 
 #include <cmath>
+#include <cstddef>
 #include <string_view>
+
+#include "iris/sampling/detail/name.hpp"
 
 #include "iris/sampling/bias/concept.hpp"
 
@@ -51,11 +54,37 @@ struct propagate_unused {
     static constexpr std::string_view name = "propagate";
     static constexpr bool propagates = true;
     static constexpr bool scales_pdf = false;
+    /// \brief Bins of the B term the integrator evaluates along the hero path (5 nm on
+    /// 380–780 nm): what it costs per vertex is proportional to this.
+    static constexpr std::size_t bins = 80;
     static float restricted_factor(float r, float pdf, float /*z*/) noexcept {
         return detail::safe_ratio(static_cast<double>(r), static_cast<double>(pdf));
     }
 };
 
-static_assert(BiasPolicy<none> && BiasPolicy<scaled_pdf> && BiasPolicy<propagate_unused>);
+namespace detail {
+template <std::size_t B>
+constexpr iris::detail::name_buffer propagate_name() noexcept {
+    iris::detail::name_buffer b;
+    return b.append("propagate").append_number(B);
+}
+template <std::size_t B>
+inline constexpr iris::detail::name_buffer propagate_name_v = propagate_name<B>();
+}  // namespace detail
+
+/// \brief PropagateUnused with B bins instead of 80 (`propagate8`: 50 nm bins on
+/// 380–780 nm): the same estimator — one jittered wavelength per bin, so still an
+/// unbiased estimate of ∫ (1 − r_α) f — with fewer, wider strata. The B term costs in
+/// proportion to B; its variance (the colour noise the method removes) grows as B falls.
+/// `docs/results.md` measures the trade.
+template <std::size_t B>
+struct propagate_coarse : propagate_unused {
+    static_assert(B >= 1 && B <= 400, "the B term needs between 1 and 400 bins");
+    static constexpr std::string_view name = detail::propagate_name_v<B>.view();
+    static constexpr std::size_t bins = B;
+};
+
+static_assert(BiasPolicy<none> && BiasPolicy<scaled_pdf> && BiasPolicy<propagate_unused> &&
+              BiasPolicy<propagate_coarse<8>>);
 
 }  // namespace iris::bias
