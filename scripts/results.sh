@@ -21,11 +21,12 @@ mkdir -p "$out"
   "$ablate" falling-cubes-led --presets hwss,paper "${cubes[@]}" "${common[@]}" -o "$out/falling-cubes-led"
   "$ablate" rubik --presets hwss,paper --width 128 --height 128 "${common[@]}" -o "$out/rubik"
   "$ablate" falling-cubes --presets hwss,paper --nthold 128 "${cubes[@]}" "${common[@]}" -o "$out/falling-cubes-nthold128"
+  "$ablate" falling-cubes --presets hwss,paper-fast "${cubes[@]}" "${common[@]}" -o "$out/falling-cubes-fast"
 } &
 wait
 
 # time-equal: both cores, nothing else running
-"$ablate" falling-cubes --presets hwss,paper --spp 16 --time-budgets 0.5,1,2,4,8 "${cubes[@]}" \
+"$ablate" falling-cubes --presets hwss,paper,paper-fast --spp 16 --time-budgets 0.5,1,2,4,8 "${cubes[@]}" \
   --reference-spp 16384 --seeds 3 --threads 2 -o "$out/falling-cubes-time"
 
 # where the bias is: paper with α ≈ 0 on every sample against the cached reference
@@ -38,7 +39,7 @@ mkdir -p docs/results/bias
 "$apps/iris-image/iris-image" error-map "$out/paper-alpha0.exr" "$ref" -o docs/results/bias/bias-alpha0.png
 
 # the spp-equal runs shared the machine, so only the time-equal run's seconds plots are kept
-for d in falling-cubes falling-cubes-led rubik falling-cubes-nthold128; do
+for d in falling-cubes falling-cubes-led rubik falling-cubes-nthold128 falling-cubes-fast; do
   mkdir -p "docs/results/$d"
   cp "$out/$d"/{results.csv,summary.md,ssim_vs_spp.png,mse_vs_spp.png,crops_16spp.png} "docs/results/$d/"
 done
