@@ -31,7 +31,7 @@ fi
 if [ -x "$bin/iris-ablate/iris-ablate" ]; then
   echo
   echo "== quick ablation: falling-cubes 160x120, 16-64 spp, 1024 spp reference =="
-  "$bin/iris-ablate/iris-ablate" falling-cubes --presets hwss,paper --spp 16,32,64 --reference-spp 1024 \
+  "$bin/iris-ablate/iris-ablate" falling-cubes --presets hwss,paper,paper-fast --spp 16,32,64 --reference-spp 1024 \
     --width 160 --height 120 --seeds 2 -o "$out/ablation"
 fi
 echo
