@@ -58,7 +58,7 @@ void render(benchmark::State& state, const std::string& scene_name, const std::s
 
 void register_all() {
     for (const char* sc : {"cornell", "falling-cubes"})
-        for (const char* p : {"hwss", "paper", "restrict-only", "scaled-pdf", "hwss-c1", "hwss-c8"})
+        for (const char* p : {"hwss", "paper", "paper-fast", "restrict-only", "scaled-pdf", "hwss-c1", "hwss-c8"})
             for (int t : {1, 2})
                 benchmark::RegisterBenchmark((std::string("Render/") + sc + "/" + p + "/threads:" + std::to_string(t)).c_str(),
                                              [=](benchmark::State& st) { render(st, sc, p, t, false); })
