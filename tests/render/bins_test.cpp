@@ -3,10 +3,14 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include <iris/render/bins.hpp>
 #include <iris/sampling/random.hpp>
 #include <iris/spectrum/named.hpp>
+#include <iris/spectrum/rgb_upsampling.hpp>
 
 namespace {
 
@@ -20,45 +24,88 @@ std::vector<float> jitters() {
     return u;
 }
 
-TEST(BinLattice, PositionStaysInsideTheTable) {
-    const lattice l(380.0f, 780.0f);
-    EXPECT_FLOAT_EQ(l.bin_width(), 5.0f);
+// domains and bin counts: (K, whole-nm lattice?) as bins.hpp promises
+TEST(BinLattice, StepsPerBinFollowTheDomain) {
+    EXPECT_EQ(iris::bin_lattice<80>(380.0f, 780.0f).steps(), 5u);   // h = 1 nm
+    EXPECT_EQ(iris::bin_lattice<80>(400.0f, 700.0f).steps(), 15u);  // Δ = 3.75 nm, h = 0.25 nm
+    EXPECT_EQ(iris::bin_lattice<8>(380.0f, 780.0f).steps(), 50u);   // paper-fast
+    EXPECT_EQ(iris::bin_lattice<7>(380.0f, 780.0f).steps(), 400u);  // h = 1/7 nm: whole nm are nodes
+    EXPECT_EQ(iris::bin_lattice<80>(380.3f, 780.0f).steps(), 5u);   // no whole-nm lattice: ≈ 1 nm
+}
+
+template <std::size_t B>
+void expect_positions_inside(float lo, float hi) {
+    const iris::bin_lattice<B> l(lo, hi);
     for (float u : jitters()) {
         const auto p = l.position(u);
-        EXPECT_LT(p.row, lattice::steps);
+        EXPECT_LT(p.row, l.steps());
         EXPECT_GE(p.t, 0.0f);
         EXPECT_LE(p.t, 1.0f);
         // row and fraction put every bin at its own wavelength
-        for (std::size_t b : {std::size_t{0}, std::size_t{41}, std::size_t{79}}) {
+        for (std::size_t b : {std::size_t{0}, B / 2, B - 1}) {
             const double at = l.node(b, p.row) + static_cast<double>(p.t) * (l.node(b, p.row + 1) - l.node(b, p.row));
-            EXPECT_NEAR(at, static_cast<double>(l.lambda(b, u)), 1e-4) << "u " << u << " bin " << b;
+            EXPECT_NEAR(at, static_cast<double>(l.lambda(b, u)), 2e-4) << "u " << u << " bin " << b;
+        }
+    }
+    EXPECT_LE(l.node(B - 1, l.steps()), static_cast<double>(hi));  // never past λmax
+}
+
+TEST(BinLattice, PositionStaysInsideTheTable) {
+    expect_positions_inside<80>(380.0f, 780.0f);
+    expect_positions_inside<80>(400.0f, 700.0f);
+    expect_positions_inside<80>(380.0f, 779.0f);  // 4.9875 nm bins: float width is inexact
+    expect_positions_inside<8>(380.0f, 780.0f);
+    expect_positions_inside<7>(380.0f, 780.0f);
+    expect_positions_inside<80>(380.3f, 780.0f);
+}
+
+// With a whole-nm lattice every table with knots on whole nm is reproduced exactly (to float
+// rounding); a table the lattice would not reproduce is evaluated directly — exact too.
+template <std::size_t B>
+void expect_reproduced(const iris::tabulated_spectrum& s, float lo, float hi, bool on_lattice, const char* what) {
+    const iris::bin_lattice<B> l(lo, hi);
+    const iris::binned_spectrum<B> binned(l, s);
+    EXPECT_EQ(binned.on_lattice(), on_lattice) << what;
+    for (float u : jitters()) {
+        const auto got = binned(l.position(u));
+        for (std::size_t b = 0; b < B; ++b) {
+            const double want = s(static_cast<double>(l.lambda(b, u)));
+            ASSERT_NEAR(got[b], want, 2e-5 * std::fabs(want) + 1e-6) << what << " u " << u << " bin " << b;
         }
     }
 }
 
-// On 380–780 nm with 80 bins the lattice step is 1 nm, so a 1 nm or 5 nm table is
-// reproduced exactly (up to float rounding of the blend).
-TEST(BinnedSpectrum, ReproducesTablesWhoseKnotsAreOnTheLattice) {
-    const lattice l(380.0f, 780.0f);
+TEST(BinnedSpectrum, ReproducesTablesExactly) {
     for (const char* name : {"D65", "A", "LED-B1", "LED-RGB1"}) {
         const auto s = iris::find_illuminant(name)->spectrum();
-        const iris::binned_spectrum<80> binned(l, s);
-        for (float u : jitters()) {
-            const auto got = binned(l.position(u));
-            for (std::size_t b = 0; b < 80; ++b) {
-                const double want = s(static_cast<double>(l.lambda(b, u)));
-                ASSERT_NEAR(got[b], want, 2e-5 * std::fabs(want) + 1e-6) << name << " u " << u << " bin " << b;
-            }
-        }
+        expect_reproduced<80>(s, 380.0f, 780.0f, true, name);
+        expect_reproduced<80>(s, 400.0f, 700.0f, true, name);
+        expect_reproduced<8>(s, 380.0f, 780.0f, true, name);
+        expect_reproduced<7>(s, 380.0f, 780.0f, true, name);
+        expect_reproduced<80>(s, 380.3f, 780.0f, false, name);  // no whole-nm lattice: direct
     }
-    const iris::binned_spectrum<80> y(l, [](double x) { return iris::cie::y_bar(x); });
+    // a box emitter 450–650 nm in zero mode: a step inside the domain → evaluated directly
+    // (on the lattice its edges would be 1 nm ramps, +0.5 % in ∫, found in review)
+    const auto box = iris::tabulated_spectrum(std::vector<double>{450, 650}, std::vector<double>{1, 1});
+    expect_reproduced<80>(box, 380.0f, 780.0f, false, "box 450-650");
+    // knots off the lattice → direct
+    std::vector<double> ramp(50);
+    for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = 0.1 + 0.01 * static_cast<double>(i * i % 7);
+    expect_reproduced<80>(iris::tabulated_spectrum::uniform(360.5, 10.0, ramp), 380.0f, 780.0f, false, "knots at .5 nm");
+    // an sRGB-upsampled reflectance (1 nm, 360–830) → on the lattice
+    expect_reproduced<80>(iris::reflectance_from_srgb({0.8, 0.3, 0.1}), 380.0f, 780.0f, true, "sRGB reflectance");
+    // the CMFs as the integrator tabulates them
+    const iris::bin_lattice<80> l(380.0f, 780.0f);
+    const iris::binned_spectrum<80> y(l, iris::tabulated_spectrum::uniform(iris::cie::cmf_lambda_min, 1.0,
+                                                                           iris::data::cie1931::y_bar));
+    EXPECT_TRUE(y.on_lattice());
     for (float u : jitters()) {
         const auto got = y(l.position(u));
         for (std::size_t b = 0; b < 80; ++b) ASSERT_NEAR(got[b], iris::cie::y_bar(l.lambda(b, u)), 2e-6);
     }
 }
 
-// Smooth models and off-lattice domains differ by the interpolation error only.
+// Smooth models (refractive indices) are interpolated on the lattice: within the error bound.
 TEST(BinnedSpectrum, SmoothModelsWithinTheInterpolationError) {
     const auto glass = iris::find_glass("N-SF11")->sellmeier;  // strongly dispersive
     for (const auto& [lo, hi] : {std::pair{380.0f, 780.0f}, std::pair{400.0f, 700.0f}}) {
@@ -82,6 +129,9 @@ TEST(BinTables, OneEntryPerMaterialAndEmitter) {
     ASSERT_EQ(t.albedo.size(), 2u);
     ASSERT_EQ(t.eta.size(), 2u);
     ASSERT_EQ(t.emission.size(), 1u);
+    EXPECT_TRUE(t.albedo[0].on_lattice());
+    EXPECT_TRUE(t.emission[0].on_lattice());
+    EXPECT_TRUE(t.x_bar.on_lattice() && t.y_bar.on_lattice() && t.z_bar.on_lattice());
     const auto p = t.lattice.position(0.5f);
     EXPECT_NEAR(t.albedo[0](p)[0], 0.25 + 0.5 * 2.5 / 400.0, 1e-6);  // λ = 382.5 nm on the linear ramp
     EXPECT_FLOAT_EQ(t.eta[1](p)[40], 1.5f);
@@ -116,6 +166,10 @@ TEST(LatticeSpectrum, ExactOnTheLatticeAndFallsBackOffIt) {
     check(iris::tabulated_spectrum::uniform(360.5, 10.0, ramp), 380.0f, 780.0f, false, "knots at .5 nm");
     check(iris::tabulated_spectrum::uniform(400.0, 5.0, ramp), 380.0f, 780.0f, false, "table starts inside");
     check(iris::find_illuminant("D65")->spectrum(), 380.0f, 779.5f, false, "fractional domain");
+    // a NaN wavelength reads the first node, never outside the table
+    const iris::lattice_spectrum d65(iris::find_illuminant("D65")->spectrum(), 380.0f, 780.0f);
+    const iris::sampled_wavelengths<1> nan({std::numeric_limits<float>::quiet_NaN()}, {1.0f});
+    EXPECT_FLOAT_EQ(d65(nan)[0], static_cast<float>(iris::find_illuminant("D65")->spectrum()(380.0)));
 }
 
 }  // namespace

@@ -181,6 +181,31 @@ iris::scene_desc falling_cubes_variant(glass g) {
     return s;
 }
 
+// U1 with light sampling and a surface that is black inside the restriction: the floor
+// reflects only outside 440–640 nm, so at α < 0.15 (N_thold = 160, 24 spp) every hero
+// wavelength sees a black floor and all of the floor's light comes from the B term —
+// including its next-event share, which must not be skipped because the hero's BSDF is
+// zero (a bug found in review: the shadow ray was traced only for a non-zero hero BSDF,
+// which left the floor several times too dark here). No dispersion, so paper ≡ hwss in
+// expectation (same statistics and bound as U2).
+TEST(Statistical, U1PaperIsUnbiasedWhereTheHeroSeesABlackSurface) {
+    const auto s = iris::scene::parse_scene(R"({
+      "camera": {"position": [0, 1.2, 2.2], "look_at": [0, 0, 0], "fov": 50},
+      "materials": {
+        "notched": {"type": "diffuse", "reflectance": {"wavelengths": [380, 439, 440, 640, 641, 780],
+                                                        "values": [0.8, 0.8, 0, 0, 0.8, 0.8]}},
+        "white": {"type": "diffuse", "reflectance": 0.5}
+      },
+      "emitters": {"lamp": {"spd": "D65", "luminance": 30}},
+      "shapes": [
+        {"type": "quad", "size": [3, 3], "material": "notched"},
+        {"type": "quad", "size": [0.4, 0.4], "material": "white", "emitter": "lamp",
+         "transform": [{"rotate": {"axis": [1, 0, 0], "degrees": 180}}, {"translate": [0, 1, 0]}]}
+      ]})",
+                                            "notched.json", {});
+    expect_agreement(s, "paper", 24, 160, 0, "notched floor");
+}
+
 // U3, first half: without specular dispersion the propagated term is exact, so paper is
 // unbiased at every iteration: samples [0, 24) with N_thold = 64 all have α < 0.4.
 TEST(Statistical, U3PaperIsUnbiasedBeforeNtholdWithoutSpecularDispersion) {

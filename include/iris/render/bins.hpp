@@ -5,103 +5,170 @@
 /// loop, with no per-wavelength table search, division or Sellmeier evaluation.
 ///
 /// The bins of one sample share a jitter u: λ_b = λmin + (b + u)Δ. On a lattice of K
-/// sub-steps per bin (h = Δ/K) every bin therefore sits at the same place between two
-/// lattice nodes: λ_b = λmin + (bK + q + t)h with q = ⌊uK⌋, t = uK − q. Row q of a
-/// `binned_spectrum` holds the spectrum at the nodes bK + q of every bin, and the value
-/// at all bins is (1 − t)·row_q + t·row_{q+1}.
+/// steps per bin (h = Δ/K) every bin therefore sits at the same place between two lattice
+/// nodes: λ_b = λmin + (bK + q + t)h with q = ⌊uK⌋, t = uK − q. Row q of a
+/// `binned_spectrum` holds the spectrum at the nodes bK + q of every bin, and the value at
+/// all bins is (1 − t)·row_q + t·row_{q+1}.
 ///
-/// Linear interpolation on the lattice equals the spectrum's own linear interpolation
-/// wherever the spectrum's knots lie on the lattice: the 1 nm and 5 nm CIE tables on the
-/// default 380–780 nm domain with 80 bins and K = 5 (h = 1 nm). Elsewhere (a 400–700 nm
-/// domain, h = 0.75 nm; smooth models such as Sellmeier) the two differ by the
-/// interpolation error O(h²·S″), about 1e-8 in η for glass — far below the noise of a term
-/// that is itself biased and vanishes at α = 1.
+/// K is chosen per domain so that h = 1/m nm (m = 1…8) with λmin on a multiple of h
+/// whenever that is possible (380–780 nm, 80 bins: h = 1 nm, K = 5; 400–700 nm: h = 0.25 nm,
+/// K = 15; 8 bins: K = 50). Linear interpolation on the lattice then equals a table's own
+/// linear interpolation for every table whose knots lie on whole nm (all of iris's data,
+/// sRGB-upsampled reflectances, and any 1 nm or 5 nm table) — the B term stays exactly the
+/// SPEC's estimator. A tabulated spectrum that the lattice would not reproduce (knots off
+/// the lattice, a step inside the domain) is evaluated directly at the bins' wavelengths
+/// instead: slower, exact. The one approximation left is the refractive index of dispersive
+/// glass (Cauchy, Sellmeier: smooth curves, not tables), interpolated on the lattice with
+/// error ≤ h²/8·|n″| ≈ 1e-8 for glass at h = 1 nm.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
+#include <span>
+#include <type_traits>
 #include <vector>
 
 #include "iris/render/scene.hpp"
 #include "iris/spectrum/color.hpp"
+#include "iris/spectrum/data/cie1931.hpp"
 #include "iris/spectrum/sampled.hpp"
 #include "iris/spectrum/spectrum.hpp"
 #include "iris/spectrum/tabulated.hpp"
 
 namespace iris {
 
-/// \brief Where one sample's bins fall on the lattice: row q and the fraction t.
+/// \brief Where one sample's bins fall on the lattice: row q, the fraction t, and the
+/// jitter u itself (for spectra evaluated directly).
 struct bin_position {
     std::size_t row = 0;
     float t = 0.0f;
+    float u = 0.0f;
 };
 
-/// \brief `Bins` bins of width Δ over [λmin, λmax], each split into `K` lattice steps.
-template <std::size_t Bins, std::size_t K = 5>
+/// \brief `Bins` equal bins of width Δ over [λmin, λmax], each split into K lattice steps.
+template <std::size_t Bins>
 class bin_lattice {
-    static_assert(Bins > 0 && K > 0, "a bin lattice needs at least one bin and one step per bin");
+    static_assert(Bins > 0, "a bin lattice needs at least one bin");
 
 public:
     static constexpr std::size_t bins = Bins;
-    static constexpr std::size_t steps = K;
 
-    constexpr bin_lattice() noexcept = default;
-    constexpr bin_lattice(float lambda_min, float lambda_max) noexcept
-        : m_min(lambda_min), m_width((lambda_max - lambda_min) / static_cast<float>(Bins)) {}
+    bin_lattice() : bin_lattice(380.0f, 780.0f) {}
+    bin_lattice(float lambda_min, float lambda_max)
+        : m_lo(lambda_min), m_hi(lambda_max), m_min(lambda_min),
+          m_width((lambda_max - lambda_min) / static_cast<float>(Bins)) {
+        const double delta = (m_hi - m_lo) / static_cast<double>(Bins);
+        auto whole = [](double x) { return std::fabs(x - std::round(x)) < 1e-6; };
+        for (int m = 1; m <= 8 && !m_whole_nm; ++m)
+            if (whole(delta * m) && whole(m_lo * m) && delta * m >= 1.0) {
+                m_steps = static_cast<std::size_t>(std::lround(delta * m));
+                m_per_nm = m;
+                m_whole_nm = true;
+            }
+        if (!m_whole_nm) m_steps = static_cast<std::size_t>(std::max(1L, std::lround(delta)));  // ≈ 1 nm
+    }
 
-    constexpr float lambda_min() const noexcept { return m_min; }
-    constexpr float bin_width() const noexcept { return m_width; }
+    float lambda_min() const noexcept { return m_min; }
+    double lambda_min_exact() const noexcept { return m_lo; }
+    double lambda_max_exact() const noexcept { return m_hi; }
+    float bin_width() const noexcept { return m_width; }
+    std::size_t steps() const noexcept { return m_steps; }  ///< K
 
     /// \brief λ_b = λmin + (b + u)Δ.
-    constexpr float lambda(std::size_t b, float u) const noexcept {
-        return m_min + (static_cast<float>(b) + u) * m_width;
+    float lambda(std::size_t b, float u) const noexcept { return m_min + (static_cast<float>(b) + u) * m_width; }
+
+    /// \brief The lattice position of jitter u ∈ [0, 1).
+    bin_position position(float u) const noexcept {
+        const float x = std::clamp(u, 0.0f, 1.0f) * static_cast<float>(m_steps);
+        const auto q = std::min(static_cast<std::size_t>(x), m_steps - 1);
+        return {q, x - static_cast<float>(q), u};
     }
 
-    /// \brief The lattice position of jitter u ∈ [0, 1). (u·K may round up to K in float
-    /// for u just below 1: that is the last row's far end, t = 1.)
-    constexpr bin_position position(float u) const noexcept {
-        const float x = std::clamp(u, 0.0f, 1.0f) * static_cast<float>(K);
-        const auto q = std::min(static_cast<std::size_t>(x), K - 1);
-        return {q, x - static_cast<float>(q)};
+    /// \brief The wavelength of node q (0 ≤ q ≤ K) of bin b, in double, never past λmax.
+    double node(std::size_t b, std::size_t q) const noexcept {
+        const double k = static_cast<double>(b * m_steps + q) / static_cast<double>(Bins * m_steps);
+        return std::min(m_hi, m_lo + (m_hi - m_lo) * k);
     }
 
-    /// \brief The wavelength of node q (0 ≤ q ≤ K) of bin b, in double.
-    constexpr double node(std::size_t b, std::size_t q) const noexcept {
-        const double h = static_cast<double>(m_width) / static_cast<double>(K);
-        return static_cast<double>(m_min) + static_cast<double>(b * K + q) * h;
+    /// \brief Is linear interpolation on this lattice exact for a piecewise-linear function
+    /// with breakpoints at these wavelengths? (Every breakpoint inside the domain is a node.)
+    bool reproduces(std::span<const double> knots) const noexcept {
+        if (!m_whole_nm) return false;
+        for (double k : knots)
+            if (k > m_lo && k < m_hi) {
+                const double x = (k - m_lo) * m_per_nm;
+                if (std::fabs(x - std::round(x)) > 1e-6) return false;
+            }
+        return true;
     }
 
 private:
-    float m_min = 380.0f;
-    float m_width = 5.0f;
+    double m_lo, m_hi;
+    float m_min, m_width;
+    std::size_t m_steps = 1;
+    int m_per_nm = 1;
+    bool m_whole_nm = false;
 };
 
-/// \brief A function of wavelength sampled at the nodes of a `bin_lattice`, row by row.
-template <std::size_t Bins, std::size_t K = 5>
+/// \brief A function of wavelength at the bins of a sample: rows on a `bin_lattice`, or,
+/// where the lattice would not reproduce it, the function itself at λ_b.
+template <std::size_t Bins>
 class binned_spectrum {
 public:
     binned_spectrum() = default;
 
-    /// \brief Tabulate `f(λ)` (λ in nm, double) at every node.
+    /// \brief Tabulate a smooth `f(λ)` (λ in nm, double) at every node (the lattice's
+    /// interpolation error is accepted: used for refractive indices).
     template <class F>
-    binned_spectrum(const bin_lattice<Bins, K>& lattice, F&& f) {
-        for (std::size_t q = 0; q <= K; ++q)
+        requires(!std::is_same_v<std::remove_cvref_t<F>, tabulated_spectrum>)
+    binned_spectrum(const bin_lattice<Bins>& lattice, F&& f) : m_steps(lattice.steps()) {
+        m_rows.resize(m_steps + 1);
+        for (std::size_t q = 0; q <= m_steps; ++q)
             for (std::size_t b = 0; b < Bins; ++b) m_rows[q][b] = static_cast<float>(f(lattice.node(b, q)));
     }
 
+    /// \brief A table: on the lattice where that is exact, evaluated directly otherwise.
+    binned_spectrum(const bin_lattice<Bins>& lattice, const tabulated_spectrum& s) : m_steps(lattice.steps()) {
+        const auto knots = s.wavelengths();
+        // a zero-mode table ending inside the domain on a non-zero value is a step there
+        const bool steps_inside = s.mode() == outside::zero && !knots.empty() &&
+                                  ((knots.front() > lattice.lambda_min_exact() && s.values().front() != 0.0) ||
+                                   (knots.back() < lattice.lambda_max_exact() && s.values().back() != 0.0));
+        if (knots.empty() || (lattice.reproduces(knots) && !steps_inside)) {
+            *this = binned_spectrum(lattice, [&](double l) { return s(l); });
+        } else {
+            m_exact = [s](double l) { return s(l); };
+            m_min = lattice.lambda_min();
+            m_width = lattice.bin_width();
+        }
+    }
+
+    /// \brief True if the value comes from the lattice rows (false: evaluated directly).
+    bool on_lattice() const noexcept { return !m_exact; }
+
     /// \brief The spectrum at every bin of a sample whose jitter sits at `p`.
-    sampled_spectrum<Bins> operator()(bin_position p) const noexcept {
+    sampled_spectrum<Bins> operator()(bin_position p) const {
+        sampled_spectrum<Bins> out;
+        if (m_exact) {
+            for (std::size_t b = 0; b < Bins; ++b)
+                out[b] = static_cast<float>(m_exact(m_min + (static_cast<float>(b) + p.u) * m_width));
+            return out;
+        }
+        if (m_rows.empty()) return out;
         const auto& lo = m_rows[p.row];
         const auto& hi = m_rows[p.row + 1];
         const float s = 1.0f - p.t;
-        sampled_spectrum<Bins> out;
         for (std::size_t b = 0; b < Bins; ++b) out[b] = s * lo[b] + p.t * hi[b];
         return out;
     }
 
 private:
-    std::array<std::array<float, Bins>, K + 1> m_rows{};
+    std::size_t m_steps = 0;
+    std::vector<std::array<float, Bins>> m_rows;
+    std::function<double(double)> m_exact;  ///< set when the lattice would not reproduce the table
+    float m_min = 0.0f, m_width = 0.0f;
 };
 
 /// \brief A tabulated spectrum re-tabulated in float on a 1 nm lattice over the domain,
@@ -133,7 +200,7 @@ public:
         const float last = static_cast<float>(m_values.size() - 2);
         const float* v = m_values.data();
         for (std::size_t k = 0; k < N; ++k) {
-            const float x = std::min(std::max(wl[k] - m_min, 0.0f), last);  // minss/maxss, no branches
+            const float x = std::min(last, std::max(0.0f, wl[k] - m_min));  // minss/maxss; NaN → 0
             const int i = static_cast<int>(x);  // to int, not size_t: one instruction on x86-64
             const float t = x - static_cast<float>(i);
             out[k] = (1.0f - t) * v[i] + t * v[i + 1];
@@ -170,14 +237,14 @@ struct hero_tables {
     }
 };
 
-/// \brief Every spectrum the B term reads, tabulated once per render: per material its
+/// \brief Every spectrum the B term reads, made once per render: per material its
 /// reflectance (diffuse, conductor) or index of refraction (dielectric), per emitter its
-/// radiance, the environment, and the CIE 1931 matching functions.
-template <std::size_t Bins, std::size_t K = 5>
+/// radiance, the environment, and the CIE 1931 matching functions (their 1 nm tables).
+template <std::size_t Bins>
 struct bin_tables {
-    using spectrum = binned_spectrum<Bins, K>;
+    using spectrum = binned_spectrum<Bins>;
 
-    bin_lattice<Bins, K> lattice;
+    bin_lattice<Bins> lattice;
     std::vector<spectrum> albedo;  ///< per material; zero for dielectrics
     std::vector<spectrum> eta;     ///< per material; zero unless a dielectric
     std::vector<spectrum> emission;
@@ -187,9 +254,9 @@ struct bin_tables {
     bin_tables() = default;
     explicit bin_tables(const scene_desc& scene)
         : lattice(scene.lambda_min, scene.lambda_max),
-          x_bar(lattice, [](double l) { return cie::x_bar(l); }),
-          y_bar(lattice, [](double l) { return cie::y_bar(l); }),
-          z_bar(lattice, [](double l) { return cie::z_bar(l); }) {
+          x_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::x_bar)),
+          y_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::y_bar)),
+          z_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::z_bar)) {
         for (const material_desc& m : scene.materials) {
             if (const auto* d = std::get_if<material::diffuse>(&m)) {
                 albedo.emplace_back(lattice, d->reflectance);

@@ -64,9 +64,6 @@ constexpr std::size_t bins_of() noexcept {
     if constexpr (requires { Config::bias_type::bins; }) return Config::bias_type::bins;
     else return 80;
 }
-/// \brief Lattice steps per bin so that the lattice is 1 nm on 380–780 nm when the bin
-/// count divides 400 (exact for iris's 1 nm and 5 nm tables; see bins.hpp).
-constexpr std::size_t lattice_steps(std::size_t bins) noexcept { return bins >= 400 ? 1 : 400 / bins; }
 }  // namespace detail
 
 template <class Config, bool Dispersive, std::size_t Bins = detail::bins_of<Config>()>
@@ -80,7 +77,7 @@ public:
 
     path_integrator(const scene_desc& scene, const light_sampler& lights, path_settings settings = {})
         : m_scene(scene), m_lights(lights), m_settings(settings), m_hero(scene) {
-        if constexpr (propagates) m_bins = bin_tables<Bins, detail::lattice_steps(Bins)>(scene);
+        if constexpr (propagates) m_bins = bin_tables<Bins>(scene);
     }
 
     /// \brief Trace one path from `origin` along unit `dir`. `dist` is the restricted
@@ -166,7 +163,12 @@ public:
                     const bool emits = em.two_sided ? cos_l != 0.0f : cos_l > 0.0f;
                     if (emits && d > 0.0f) {
                         const sampled_spectrum<C> f = bsdf_eval_given<C>(mat, ng, wo, wi, hero_albedo, hero_eta);
-                        if (!f.is_zero()) {
+                        // the bins' BSDF too: a surface black at every hero wavelength (say,
+                        // inside the restriction's windows) may still reflect at the bins,
+                        // and B must keep its light-sampling share there (SPEC U1)
+                        sampled_spectrum<Bins> fb;
+                        if (use_bins) fb = bsdf_eval_given<Bins>(mat, ng, wo, wi, bin_albedo, bin_eta);
+                        if (!f.is_zero() || (use_bins && !fb.is_zero())) {
                             ++out.rays;
                             const glm::vec3 o2 = offset_ray_origin(p, ng, wi);
                             if (!tracer.occluded(o2, wi, glm::length(ls->point - o2) * (1.0f - 1e-4f))) {
@@ -177,8 +179,7 @@ public:
                                 lc += beta * f * m_hero.emission[ls->emitter](wl) / (pl * denom);
                                 if (use_bins) {
                                     const float w_hero = pl / (pl + pb[0]);
-                                    lb += tb * bsdf_eval_given<Bins>(mat, ng, wo, wi, bin_albedo, bin_eta) *
-                                          m_bins.emission[ls->emitter](bp) * (w_hero / pl);
+                                    lb += tb * fb * m_bins.emission[ls->emitter](bp) * (w_hero / pl);
                                 }
                             }
                         }
@@ -274,7 +275,7 @@ private:
     const light_sampler& m_lights;
     path_settings m_settings;
     hero_tables m_hero;       ///< the spectra the C wavelengths read, on an exact 1 nm lattice
-    bin_tables<Bins, detail::lattice_steps(Bins)> m_bins;  ///< empty unless the bias policy propagates
+    bin_tables<Bins> m_bins;  ///< empty unless the bias policy propagates
 };
 
 }  // namespace iris
