@@ -549,7 +549,9 @@ TEST(Config, AlphaDistributionAndBins) {
     const auto d = cfg.distribution(cfg.alpha(0));
     EXPECT_EQ(d.domain(), cfg.params.domain);
     EXPECT_NEAR(d.normalisation(), 30.0f / 300.0f, 1e-6f);
-    EXPECT_EQ(cfg.bins().count(), 60u);
+    EXPECT_EQ(cfg.bins().count(), 80u);  // the policy's 80 equal bins, as the renderer lays them out
+    EXPECT_FLOAT_EQ(static_cast<float>(cfg.bins().nominal_width()), 3.75f);
+    EXPECT_EQ(preset::paper_fast{}.bins().count(), 8u);
     EXPECT_EQ(cfg.distribution(cfg.alpha(1)).normalisation(), 1.0f);
     // an illuminant-shaped config gets its base pdf from the caller
     integrator_config<restriction::multi_box<3>, relaxation::linear, 4, bias::propagate_unused, spectral_pdf::illuminant> ic;

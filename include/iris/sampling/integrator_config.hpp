@@ -5,7 +5,7 @@
 /// base pdf is appended when it is not uniform: `unrestricted/none/C4/none/visible`).
 ///
 /// The types are the compile-time part; `parameters` holds the numbers (kernel centres
-/// and widths, N_thold, domain, B-term bin width, distribution cell size). An integrator
+/// and widths, N_thold, domain, distribution cell size). An integrator
 /// asks it for α_i (`alpha(i)`), the restricted distribution of a pass
 /// (`distribution(alpha, base_pdf)`) and the B term's bins (`bins()`).
 
@@ -75,7 +75,6 @@ struct integrator_config {
         Curve curve{};
         std::uint32_t n_thold = 512;    ///< relaxation length in samples per pixel (the paper's 512)
         spectral_domain domain{};       ///< Λ, default 380–780 nm
-        float bin_width_nm = bias::bin_layout::default_width_nm;  ///< B-term bins, default 5 nm
         float cell_nm = distribution_resolution::default_cell_nm; ///< distribution grid, default 1 nm
     };
     parameters params{};
@@ -97,8 +96,13 @@ struct integrator_config {
         return distribution(alpha, BasePdf{});
     }
 
-    /// \brief The B term's bins on the configured domain.
-    constexpr bias::bin_layout bins() const noexcept { return bias::bin_layout(params.domain, params.bin_width_nm); }
+    /// \brief The B term's bins on the configured domain: the bias policy's count of equal
+    /// bins (80 for `propagate_unused`, 5 nm on 380–780 nm; B for `propagate_coarse<B>`),
+    /// as the renderer lays them out; 5 nm bins for a policy without a count.
+    constexpr bias::bin_layout bins() const noexcept {
+        if constexpr (requires { Bias::bins; }) return bias::bin_layout::with_count(params.domain, Bias::bins);
+        else return bias::bin_layout(params.domain);
+    }
 };
 
 }  // namespace iris
