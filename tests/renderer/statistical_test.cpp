@@ -41,6 +41,18 @@ std::vector<iris::xyz> window_means(const iris::scene_desc& s, options o, int fr
     return out;
 }
 
+/// \brief Options for a w×h render of `preset` at `spp` with N_thold and seed.
+options render_options(const std::string& preset, int w, int h, int spp, int nthold, std::uint64_t seed) {
+    options o;
+    o.preset = preset;
+    o.width = w;
+    o.height = h;
+    o.spp = spp;
+    o.nthold = nthold;
+    o.seed = seed;
+    return o;
+}
+
 struct mean_se {
     double mean, se;
 };
@@ -111,14 +123,8 @@ std::array<std::vector<double>, 15> region_statistics(const iris::scene_desc& s,
                                                       int nthold, int from, std::uint64_t seed_base) {
     std::array<std::vector<double>, 15> stats;
     for (int seed = 0; seed < seeds; ++seed) {
-        options o;
-        o.preset = preset;
-        o.width = width;
-        o.height = height;
-        o.spp = spp;
-        o.nthold = nthold;
-        o.seed = seed_base + static_cast<std::uint64_t>(seed);
-        const auto px = window_means(s, o, from);
+        const auto px = window_means(
+            s, render_options(preset, width, height, spp, nthold, seed_base + static_cast<std::uint64_t>(seed)), from);
         for (int region = 0; region < 5; ++region) {
             std::array<double, 3> sum{};
             int n = 0;
@@ -304,14 +310,9 @@ seed_statistics block_statistics(const iris::scene_desc& s, const std::string& p
                                  std::uint64_t seed_base) {
     seed_statistics stats(2 * u3_per_half);
     for (int seed = 0; seed < u3_seeds; ++seed) {
-        options o;
-        o.preset = preset;
-        o.width = u3_width;
-        o.height = u3_height;
-        o.spp = spp;
-        o.nthold = nthold;
-        o.seed = seed_base + static_cast<std::uint64_t>(seed);
-        const auto px = window_means(s, o, from);
+        const auto px = window_means(
+            s, render_options(preset, u3_width, u3_height, spp, nthold, seed_base + static_cast<std::uint64_t>(seed)),
+            from);
         std::vector<double> sums(stats.size(), 0.0);
         for (int y = 0; y < u3_height; ++y)
             for (int x = 0; x < u3_width; ++x) {
