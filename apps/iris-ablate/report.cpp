@@ -128,8 +128,10 @@ void write_report(const ablation_options& opt, const ablation_result& r) {
     const auto by_spp = group(r.spp_rows, false);
     metric_plot(by_spp, opt.presets, false, true, scene, opt.out / "ssim_vs_spp.png");
     metric_plot(by_spp, opt.presets, false, false, scene, opt.out / "mse_vs_spp.png");
-    metric_plot(by_spp, opt.presets, true, true, scene, opt.out / "ssim_vs_seconds.png");
-    metric_plot(by_spp, opt.presets, true, false, scene, opt.out / "mse_vs_seconds.png");
+    // vs seconds: the time-equal snapshots when there are any, else the spp snapshots' times
+    const auto by_time = r.time_rows.empty() ? by_spp : group(r.time_rows, true);
+    metric_plot(by_time, opt.presets, true, true, scene, opt.out / "ssim_vs_seconds.png");
+    metric_plot(by_time, opt.presets, true, false, scene, opt.out / "mse_vs_seconds.png");
     write_crops(opt, r, opt.out / fmt::format("crops_{}spp.png", opt.spp.front()));
 
     // summary.md
