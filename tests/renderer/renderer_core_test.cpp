@@ -132,6 +132,10 @@ TEST(RendererCore, BadOptionsNameWhatIsAccepted) {
     o.spp = 1;
     o.nthold = 0;
     EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
+    o.nthold = 1;
+    o.width = -3;
+    o.height = 4;
+    EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
 }
 
 TEST(RendererCore, ExtremeIorsStayFinite) {

@@ -1,7 +1,6 @@
 // The renderer end to end on built-in scenes: determinism, extremes, bad options.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
 
 #include <iris/renderer/renderer.hpp>
@@ -69,48 +68,8 @@ TEST(Renderer, FeatureSummaryPicksTheInstantiation) {
     EXPECT_TRUE(cubes.status.dispersive_instantiation);
 }
 
-TEST(Renderer, CancelStopsAfterACompletePass) {
-    const auto s = iris::scene::builtin_scene("cornell");
-    iris::renderer::options o;
-    o.spp = 100;
-    o.width = 8;
-    o.height = 8;
-    std::atomic<bool> cancel{false};
-    iris::renderer::hooks h;
-    h.cancel = &cancel;
-    h.on_pass = [&](const iris::film&, const iris::renderer::status& st) {
-        if (st.spp_done == 3) cancel = true;
-        return true;
-    };
-    iris::film f(1, 1);
-    const auto st = iris::renderer::render(s, o, f, h);
-    EXPECT_TRUE(st.interrupted);
-    EXPECT_EQ(st.spp_done, 3);
-    for (std::size_t i = 0; i < 64; ++i) EXPECT_EQ(f.samples(i), 3u);
-}
-
-TEST(Renderer, BadOptionsAreRejectedWithTheAcceptedValues) {
-    const auto s = iris::scene::builtin_scene("cornell");
-    iris::film f(1, 1);
-    iris::renderer::options o;
-    o.preset = "no-such-preset";
-    try {
-        iris::renderer::render(s, o, f);
-        FAIL();
-    } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("paper"), std::string::npos) << e.what();
-    }
-    o.preset = "hwss";
-    o.spp = 0;
-    EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
-    o.spp = 1;
-    o.nthold = 0;
-    EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
-    o.nthold = 1;
-    o.width = -3;
-    o.height = 4;
-    EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
-}
+// Cancellation and option validation do not depend on the scene: they are tested once, in
+// renderer_core_test.cpp (RendererCore.CancelKeepsTheLastCompletePass, .BadOptionsNameWhatIsAccepted).
 
 TEST(Renderer, ExtremeIorsAndGrazingCamerasStayFinite) {
     auto s = iris::scene::builtin_scene("falling-cubes");

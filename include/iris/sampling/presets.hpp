@@ -39,18 +39,6 @@ struct type_list {
     static constexpr std::size_t size = sizeof...(T);
 };
 
-namespace detail {
-/// \brief A string usable as a template argument (a preset's CLI name).
-template <std::size_t N>
-struct fixed_string {
-    char data[N]{};
-    constexpr fixed_string(const char (&s)[N]) noexcept {
-        for (std::size_t i = 0; i < N; ++i) data[i] = s[i];
-    }
-    constexpr std::string_view view() const noexcept { return {data, N - 1}; }
-};
-}  // namespace detail
-
 /// \brief A configuration with the short name the command lines use (`paper`). It *is*
 /// the configuration (it derives from it), so it can be passed wherever one is expected.
 template <detail::fixed_string CliName, class Config>

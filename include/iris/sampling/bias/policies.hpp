@@ -62,16 +62,6 @@ struct propagate_unused {
     }
 };
 
-namespace detail {
-template <std::size_t B>
-constexpr iris::detail::name_buffer propagate_name() noexcept {
-    iris::detail::name_buffer b;
-    return b.append("propagate").append_number(B);
-}
-template <std::size_t B>
-inline constexpr iris::detail::name_buffer propagate_name_v = propagate_name<B>();
-}  // namespace detail
-
 /// \brief PropagateUnused with B bins instead of 80 (`propagate8`: 50 nm bins on
 /// 380–780 nm): the same estimator — one jittered wavelength per bin, so still an
 /// unbiased estimate of ∫ (1 − r_α) f — with fewer, wider strata. The B term costs in
@@ -80,7 +70,7 @@ inline constexpr iris::detail::name_buffer propagate_name_v = propagate_name<B>(
 template <std::size_t B>
 struct propagate_coarse : propagate_unused {
     static_assert(B >= 1 && B <= 400, "the B term needs between 1 and 400 bins");
-    static constexpr std::string_view name = detail::propagate_name_v<B>.view();
+    static constexpr std::string_view name = iris::detail::numbered_name_v<"propagate", B>.view();
     static constexpr std::size_t bins = B;
 };
 

@@ -32,4 +32,23 @@ struct name_buffer {
     constexpr std::string_view view() const noexcept { return {data, size}; }
 };
 
+/// \brief A string usable as a template argument (a preset's CLI name, a name prefix).
+template <std::size_t N>
+struct fixed_string {
+    char data[N]{};
+    constexpr fixed_string(const char (&s)[N]) noexcept {
+        for (std::size_t i = 0; i < N; ++i) data[i] = s[i];
+    }
+    constexpr std::string_view view() const noexcept { return {data, N - 1}; }
+};
+
+/// \brief `Prefix` followed by the decimal `N`: `numbered_name<"multibox", 3>` is "multibox3".
+template <fixed_string Prefix, std::size_t N>
+constexpr name_buffer numbered_name() noexcept {
+    name_buffer b;
+    return b.append(Prefix.view()).append_number(N);
+}
+template <fixed_string Prefix, std::size_t N>
+inline constexpr name_buffer numbered_name_v = numbered_name<Prefix, N>();
+
 }  // namespace iris::detail

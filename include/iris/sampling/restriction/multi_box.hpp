@@ -30,23 +30,13 @@
 
 namespace iris::restriction {
 
-namespace detail {
-template <std::size_t N>
-constexpr iris::detail::name_buffer multi_box_name() noexcept {
-    iris::detail::name_buffer b;
-    return b.append("multibox").append_number(N);
-}
-template <std::size_t N>
-inline constexpr iris::detail::name_buffer multi_box_name_v = multi_box_name<N>();
-}  // namespace detail
-
 /// \brief N growing windows; centres and widths are runtime values.
 template <std::size_t N>
 struct multi_box {
     static_assert(N >= 1, "multi_box<N> needs at least one window (N >= 1)");
     static_assert(N <= 16, "multi_box<N> supports at most 16 windows: more would sample most of the spectrum anyway");
 
-    static constexpr std::string_view name = detail::multi_box_name_v<N>.view();
+    static constexpr std::string_view name = iris::detail::numbered_name_v<"multibox", N>.view();
     static constexpr std::size_t max_intervals = N;
 
     std::array<float, N> centres_nm = default_centres();
