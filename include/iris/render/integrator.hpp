@@ -145,9 +145,18 @@ public:
             if (depth >= m_settings.max_depth) break;
             const material_desc& mat = m_scene.materials[shape.material];
             const bool delta = is_delta(mat);
-            const auto hero_albedo = [&] { return m_hero.albedo[shape.material](wl); };
+            // a diffuse vertex reads its reflectance twice (NEE and BSDF sampling): look it up
+            // once, for the hero wavelengths and for the bins
+            const bool has_albedo = !std::holds_alternative<material::dielectric>(mat);
+            sampled_spectrum<C> hero_refl;
+            sampled_spectrum<Bins> bin_refl;
+            if (has_albedo) {
+                hero_refl = m_hero.albedo[shape.material](wl);
+                if (use_bins) bin_refl = m_bins.albedo[shape.material](bp);
+            }
+            const auto hero_albedo = [&] { return hero_refl; };
             const auto hero_eta = [&] { return detail::etas(std::get<material::dielectric>(mat).ior, wl); };
-            const auto bin_albedo = [&] { return m_bins.albedo[shape.material](bp); };
+            const auto bin_albedo = [&] { return bin_refl; };
             const auto bin_eta = [&] { return m_bins.eta[shape.material](bp); };
 
             // next-event estimation
