@@ -1,7 +1,8 @@
 // Whole-renderer throughput (samples/s, rays/s) through iris::renderer on built-in scenes:
 // presets side by side (what the B term of PropagateUnused costs per sample), 1 vs 2
 // threads, and the dispersive vs non-dispersive instantiation on a scene without
-// dispersion (what the feature summary's choice saves). Compiles to nothing without
+// dispersion (what the feature summary's choice saves), and the hot loop compiled for each
+// instruction set this CPU runs (baseline SSE2, AVX2, AVX-512). Compiles to nothing without
 // iris::renderer and iris::scene (bench/CMakeLists.txt links them when they exist).
 // Run: build/release/bench/iris-bench --benchmark_filter=Render
 #if __has_include(<iris/renderer/renderer.hpp>) && __has_include(<iris/scene/scene.hpp>)
@@ -34,7 +35,7 @@ const iris::scene_desc& scene(const std::string& name) {
 }
 
 void render(benchmark::State& state, const std::string& scene_name, const std::string& preset, int threads,
-            bool force_dispersive) {
+            bool force_dispersive, const std::string& isa = "auto") {
     const auto& s = scene(scene_name);
     iris::renderer::options o;
     o.preset = preset;
@@ -44,6 +45,7 @@ void render(benchmark::State& state, const std::string& scene_name, const std::s
     o.threads = threads;
     o.nthold = 1 << 20;  // α stays < 1: PropagateUnused evaluates its B term on every sample
     o.force_dispersive = force_dispersive;
+    o.isa = isa;
     double samples = 0, rays = 0;
     for (auto _ : state) {
         iris::film f(1, 1);
@@ -69,6 +71,14 @@ void register_all() {
         for (bool force : {false, true})
             benchmark::RegisterBenchmark((std::string("Render/cornell-plain/") + p + (force ? "/dispersive-instantiation" : "/plain-instantiation")).c_str(),
                                          [=](benchmark::State& st) { render(st, "cornell-plain", p, 1, force); })
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime()
+                ->MinTime(1.0);
+    // the hot loop per instruction set (images are identical; renderer_core_test checks that)
+    for (const auto& isa : iris::renderer::instruction_sets())
+        for (const char* p : {"hwss", "paper", "paper-fast"})
+            benchmark::RegisterBenchmark((std::string("Render/falling-cubes/") + p + "/isa:" + isa).c_str(),
+                                         [=](benchmark::State& st) { render(st, "falling-cubes", p, 1, false, isa); })
                 ->Unit(benchmark::kMillisecond)
                 ->UseRealTime()
                 ->MinTime(1.0);

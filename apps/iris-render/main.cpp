@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <iris/exr/exr.hpp>
@@ -41,7 +42,7 @@ extern "C" void on_sigint(int) { g_interrupted.store(true); }
 namespace fs = std::filesystem;
 
 struct args {
-    std::string scene, preset = "hwss", out, png, stats;
+    std::string scene, preset = "hwss", out, png, stats, isa = "auto";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
     double every_seconds = 0.0;
     std::uint64_t seed = 1;
@@ -105,6 +106,7 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
                         {"width", st.width},
                         {"height", st.height},
                         {"threads", st.threads},
+                        {"isa", st.isa},
                         {"seed", a.seed},
                         {"nthold", a.nthold},
                         {"seconds", st.seconds},
@@ -163,6 +165,7 @@ int run_render(const args& a) {
     opt.width = a.width;
     opt.height = a.height;
     opt.path.max_depth = a.max_depth;
+    opt.isa = a.isa;
 
     std::signal(SIGINT, on_sigint);
     const bool tty = ::isatty(STDERR_FILENO) != 0;
@@ -234,6 +237,12 @@ int main(int argc, char** argv) {
     app.add_option("--every", a.every, "rewrite the image every K samples per pixel (0: only at the end)")->capture_default_str();
     app.add_option("--every-seconds", a.every_seconds, "rewrite the image every T seconds (0: off)")->capture_default_str();
     app.add_option("--max-depth", a.max_depth, "maximum number of scattering events")->capture_default_str();
+    app.add_option("--isa", a.isa,
+                   fmt::format("instruction set of the integrator's hot loop: auto (the widest this CPU runs) or one of "
+                               "{} (the images are bit-identical; only the speed differs)",
+                               fmt::join(iris::renderer::instruction_sets(), ", ")))
+        ->check(CLI::IsMember({"auto", "baseline", "avx2", "avx512"}))
+        ->capture_default_str();
     app.add_flag("--half", a.half, "write half-float EXR (default float)");
     app.add_flag("--list-presets", a.list_presets, "list the sampling presets and exit");
     app.add_flag("--list-scenes", a.list_scenes, "list the built-in scenes and exit");

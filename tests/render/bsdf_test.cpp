@@ -2,6 +2,8 @@
 // equals the albedo computed by quadrature of bsdf_eval, and pdf() agrees with sample().
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -59,6 +61,42 @@ TEST(Bsdf, SmoothDielectricConservesEnergyAndTerminatesSecondaries) {
         }
     }
     EXPECT_GT(refracted, 1500);  // F ≈ 0.05 at this angle
+}
+
+// The B term's weight at a delta event, computed for all bins at once with two divisions
+// per wavelength, must be the scalar Fresnel of the hero's path: F(λ) for reflection and
+// (1 − F(λ))/η_t² for transmission, from either side, through total internal reflection,
+// at normal and grazing incidence and for η = 1 (float rounding: a few ulp).
+TEST(Bsdf, DeltaWeightAtTheBinsIsTheScalarFresnel) {
+    constexpr std::size_t M = 24;
+    std::array<float, M> lambdas{}, ones{};
+    std::array<float, M> etas{};
+    for (std::size_t k = 0; k < M; ++k) {
+        lambdas[k] = 380.0f + 400.0f * (static_cast<float>(k) + 0.5f) / M;
+        ones[k] = 1.0f;
+        etas[k] = k == 0 ? 1.0f : (k == 1 ? 4.0f : 1.3f + 0.05f * static_cast<float>(k));
+    }
+    const sampled_wavelengths<M> wl(lambdas, ones);
+    const iris::sampled_spectrum<M> eta(etas);
+    const iris::material_desc glass = iris::material::dielectric{iris::constant_ior{1.5}, 0.0f};
+    int tir = 0;
+    for (float co : {1.0f, 0.9f, 0.5f, 0.2f, 1e-3f, 0.0f, -1e-3f, -0.2f, -0.5f, -0.9f, -1.0f}) {
+        const float s = std::sqrt(std::max(0.0f, 1.0f - co * co));
+        const glm::vec3 wo(s, 0.0f, co);
+        for (auto kind : {iris::lobe::reflection, iris::lobe::transmission}) {
+            const auto w = iris::delta_weight_given<M>(
+                glass, n, wo, kind, [] { return iris::sampled_spectrum<M>(0.0f); }, [&] { return eta; });
+            for (std::size_t k = 0; k < M; ++k) {
+                const float f = iris::detail::fresnel_dielectric(co, etas[k]);
+                const float et = co > 0.0f ? etas[k] : 1.0f / etas[k];
+                const float expected = kind == iris::lobe::reflection ? f : (1.0f - f) / (et * et);
+                if (f == 1.0f) ++tir;
+                EXPECT_NEAR(w[k], expected, 4e-6f * std::max(1.0f, expected))
+                    << "cos " << co << " eta " << etas[k] << (kind == iris::lobe::reflection ? " R" : " T");
+            }
+        }
+    }
+    EXPECT_GT(tir, 0);  // total internal reflection was exercised
 }
 
 TEST(Bsdf, RoughDielectricPdfIntegratesToAtMostOneAndMatchesSampling) {

@@ -2,6 +2,7 @@
 // for every preset, determinism across thread counts, cancellation, bad options.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -136,6 +137,20 @@ TEST(RendererCore, BadOptionsNameWhatIsAccepted) {
     o.width = -3;
     o.height = 4;
     EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument);
+    o.width = o.height = 0;
+    o.isa = "sse9";
+    try {
+        iris::renderer::render(s, o, f);
+        FAIL();
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("avx512"), std::string::npos) << e.what();
+    }
+    const auto sets = iris::renderer::instruction_sets();
+    for (const char* isa : {"avx2", "avx512"})  // known, but refused where this CPU cannot run it
+        if (std::find(sets.begin(), sets.end(), isa) == sets.end()) {
+            o.isa = isa;
+            EXPECT_THROW(iris::renderer::render(s, o, f), std::invalid_argument) << isa;
+        }
 }
 
 TEST(RendererCore, ExtremeIorsStayFinite) {

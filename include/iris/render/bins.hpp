@@ -77,7 +77,9 @@ public:
     std::size_t steps() const noexcept { return m_steps; }  ///< K
 
     /// \brief λ_b = λmin + (b + u)Δ.
-    float lambda(std::size_t b, float u) const noexcept { return m_min + (static_cast<float>(b) + u) * m_width; }
+    float lambda(std::size_t b, float u) const noexcept {
+        return m_min + (static_cast<float>(static_cast<int>(b)) + u) * m_width;  // int → float vectorises, size_t does not
+    }
 
     /// \brief The lattice position of jitter u ∈ [0, 1).
     bin_position position(float u) const noexcept {
@@ -148,23 +150,42 @@ public:
     /// \brief True if the value comes from the lattice rows (false: evaluated directly).
     bool on_lattice() const noexcept { return !m_exact; }
 
-    /// \brief The spectrum at every bin of a sample whose jitter sits at `p`.
-    sampled_spectrum<Bins> operator()(bin_position p) const {
-        sampled_spectrum<Bins> out;
+    /// \brief The spectrum at the bins of one sample, read element by element (so that a
+    /// loop over the bins can blend the rows as it goes, without a temporary spectrum).
+    struct view {
+        const float* lo;
+        const float* hi;
+        float s, t;
+        float operator[](std::size_t b) const noexcept { return s * lo[b] + t * hi[b]; }
+    };
+
+    /// \brief The view at `p`. A directly evaluated spectrum is evaluated into `scratch`
+    /// (which must outlive the view); an empty one reads zeros.
+    view at(bin_position p, std::array<float, Bins>& scratch) const {
         if (m_exact) {
             for (std::size_t b = 0; b < Bins; ++b)
-                out[b] = static_cast<float>(m_exact(m_min + (static_cast<float>(b) + p.u) * m_width));
-            return out;
+                scratch[b] = static_cast<float>(m_exact(m_min + (static_cast<float>(b) + p.u) * m_width));
+            return {scratch.data(), zeros().data(), 1.0f, 0.0f};  // x·1 + 0·0 = x exactly
         }
-        if (m_rows.empty()) return out;
-        const auto& lo = m_rows[p.row];
-        const auto& hi = m_rows[p.row + 1];
-        const float s = 1.0f - p.t;
-        for (std::size_t b = 0; b < Bins; ++b) out[b] = s * lo[b] + p.t * hi[b];
+        if (m_rows.empty()) return {zeros().data(), zeros().data(), 1.0f, 0.0f};
+        return {m_rows[p.row].data(), m_rows[p.row + 1].data(), 1.0f - p.t, p.t};
+    }
+
+    /// \brief The spectrum at every bin of a sample whose jitter sits at `p`.
+    sampled_spectrum<Bins> operator()(bin_position p) const {
+        std::array<float, Bins> scratch;  // written only for a directly evaluated spectrum
+        const view v = at(p, scratch);
+        sampled_spectrum<Bins> out;
+        for (std::size_t b = 0; b < Bins; ++b) out[b] = v[b];
         return out;
     }
 
 private:
+    static const std::array<float, Bins>& zeros() noexcept {
+        static constexpr std::array<float, Bins> z{};
+        return z;
+    }
+
     std::size_t m_steps = 0;
     std::vector<std::array<float, Bins>> m_rows;
     std::function<double(double)> m_exact;  ///< set when the lattice would not reproduce the table

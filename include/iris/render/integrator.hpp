@@ -24,10 +24,12 @@
 /// there every p(x̄|λ_k) equals the hero's, ρ ≡ 1, so no per-wavelength pdf is evaluated
 /// or tracked (the feature summary picks it; docs/performance.md measures what it saves).
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -90,17 +92,20 @@ public:
         const sampled_wavelengths<C> wl = dist.template sample_wavelengths<C>(rng.next());
 
         // B-term bins (only while the restriction is not yet relaxed)
-        const bool use_bins = propagates && alpha < 1.0f;
-        float jitter = 0.0f;
+        bool use_bins = propagates && alpha < 1.0f;
         bin_position bp;
+        sampled_spectrum<Bins> outside;  // 1 − r_α(λ_b): the share of each bin that B carries
         if (use_bins) {
-            jitter = rng.next();
+            const float jitter = rng.next();
             bp = m_bins.lattice.position(jitter);
+            outside = complement(dist, jitter);
+            use_bins = !outside.is_zero();  // every bin inside the windows: B = 0
         }
 
         sampled_spectrum<C> beta(1.0f), rho(1.0f), rho_before(1.0f), lc;
         sampled_spectrum<Bins> tb, lb;
         if (use_bins) tb = sampled_spectrum<Bins>(1.0f);
+        std::array<float, Bins> scratch;  // for a spectrum off the bins' lattice (see binned_spectrum::at)
         bool prev_delta = true;  // the camera ray: no light-sampling strategy competes
         float prev_pdf = 0.0f;
 
@@ -111,7 +116,7 @@ public:
                 if (m_scene.environment) {  // not light-sampled: BSDF sampling is its only strategy
                     const float denom = sum_rho(rho);
                     lc += beta * m_hero.environment(wl) / denom;
-                    if (use_bins) lb += tb * m_bins.environment(bp);
+                    if (use_bins) add_light(lb, tb, m_bins.environment.at(bp, scratch), 1.0f);
                 }
                 break;
             }
@@ -139,7 +144,7 @@ public:
                         w_hero = prev_pdf / (prev_pdf + pl);
                     }
                     lc += beta * m_hero.emission[*shape.emitter](wl) / denom;
-                    if (use_bins) lb += tb * m_bins.emission[*shape.emitter](bp) * w_hero;
+                    if (use_bins) add_light(lb, tb, m_bins.emission[*shape.emitter].at(bp, scratch), w_hero);
                 }
             }
             if (depth >= m_settings.max_depth) break;
@@ -156,7 +161,7 @@ public:
             }
             const auto hero_albedo = [&] { return hero_refl; };
             const auto hero_eta = [&] { return detail::etas(std::get<material::dielectric>(mat).ior, wl); };
-            const auto bin_albedo = [&] { return bin_refl; };
+            const auto bin_albedo = [&]() -> const sampled_spectrum<Bins>& { return bin_refl; };
             const auto bin_eta = [&] { return m_bins.eta[shape.material](bp); };
 
             // next-event estimation
@@ -188,7 +193,7 @@ public:
                                 lc += beta * f * m_hero.emission[ls->emitter](wl) / (pl * denom);
                                 if (use_bins) {
                                     const float w_hero = pl / (pl + pb[0]);
-                                    lb += tb * fb * m_bins.emission[ls->emitter](bp) * (w_hero / pl);
+                                    add_light(lb, tb, fb, m_bins.emission[ls->emitter].at(bp, scratch), w_hero / pl);
                                 }
                             }
                         }
@@ -203,10 +208,11 @@ public:
             const float p0 = bs->pdf[0];
             if (!(p0 > 0.0f)) break;
             if (use_bins) {
+                const float inv_p0 = 1.0f / p0;
                 if (bs->delta)
-                    tb *= delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta) / p0;
+                    scale(tb, delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta), inv_p0);
                 else
-                    tb *= bsdf_eval_given<Bins>(mat, ng, wo, bs->wi, bin_albedo, bin_eta) / p0;
+                    scale(tb, bsdf_eval_given<Bins>(mat, ng, wo, bs->wi, bin_albedo, bin_eta), inv_p0);
             }
             beta *= bs->f_cos / p0;
             if constexpr (Dispersive) {
@@ -237,14 +243,33 @@ public:
             const double w = static_cast<double>(dist.restriction(wl[j])) / (static_cast<double>(wl.pdf(j)) * z);
             add_cmf(v, w * static_cast<double>(lc[j]), wl[j]);
         }
-        if (use_bins && !lb.is_zero()) {
-            // Σ_b (1 − r_α(λ_b)) Δλ L_b · cmf(λ_b)
-            sampled_spectrum<Bins> w;
-            for (std::size_t b = 0; b < Bins; ++b) w[b] = 1.0f - dist.restriction(m_bins.lattice.lambda(b, jitter));
-            w *= lb * m_bins.lattice.bin_width();
-            v.x += static_cast<double>((w * m_bins.x_bar(bp)).sum());
-            v.y += static_cast<double>((w * m_bins.y_bar(bp)).sum());
-            v.z += static_cast<double>((w * m_bins.z_bar(bp)).sum());
+        if (use_bins) {
+            // Σ_b (1 − r_α(λ_b)) Δλ L_b · cmf(λ_b): one pass, three sums in 8 interleaved
+            // partial sums each (a fixed order, as sampled_spectrum::sum)
+            std::array<float, Bins> sy_, sz_;  // more scratch, used only off the lattice
+            const auto xb = m_bins.x_bar.at(bp, scratch), yb = m_bins.y_bar.at(bp, sy_), zb = m_bins.z_bar.at(bp, sz_);
+            constexpr std::size_t lanes = 8;
+            std::array<float, lanes> sx{}, sy{}, sz{};
+            const auto add = [&](std::size_t b, std::size_t l) {
+                const float w = outside[b] * lb[b];
+                sx[l] += w * xb[b];
+                sy[l] += w * yb[b];
+                sz[l] += w * zb[b];
+            };
+            std::size_t b0 = 0;
+            for (; b0 + lanes <= Bins; b0 += lanes)
+                for (std::size_t l = 0; l < lanes; ++l) add(b0 + l, l);
+            for (std::size_t l = 0; b0 + l < Bins; ++l) add(b0 + l, l);
+            float x = 0.0f, y = 0.0f, zz = 0.0f;
+            for (std::size_t l = 0; l < lanes; ++l) {
+                x += sx[l];
+                y += sy[l];
+                zz += sz[l];
+            }
+            const double dl = static_cast<double>(m_bins.lattice.bin_width());
+            v.x += dl * static_cast<double>(x);
+            v.y += dl * static_cast<double>(y);
+            v.z += dl * static_cast<double>(zz);
         }
         constexpr double k = 1.0 / cie::y_integral;
         out.value = {v.x * k, v.y * k, v.z * k};
@@ -252,6 +277,51 @@ public:
     }
 
 private:
+    using bin_view = typename binned_spectrum<Bins>::view;
+    // The B term's updates, each one pass over the bins (no temporary spectra)
+    /// \brief lb += tb · e · s (emission e reached with weight s).
+    static void add_light(sampled_spectrum<Bins>& lb, const sampled_spectrum<Bins>& tb, const bin_view& e,
+                          float s) noexcept {
+        for (std::size_t b = 0; b < Bins; ++b) lb[b] += tb[b] * e[b] * s;
+    }
+    /// \brief lb += tb · f · e · s (emission e through the BSDF value f, weight s).
+    static void add_light(sampled_spectrum<Bins>& lb, const sampled_spectrum<Bins>& tb,
+                          const sampled_spectrum<Bins>& f, const bin_view& e, float s) noexcept {
+        for (std::size_t b = 0; b < Bins; ++b) lb[b] += tb[b] * f[b] * e[b] * s;
+    }
+    /// \brief tb ← tb · f · s.
+    static void scale(sampled_spectrum<Bins>& tb, const sampled_spectrum<Bins>& f, float s) noexcept {
+        for (std::size_t b = 0; b < Bins; ++b) tb[b] *= f[b] * s;
+    }
+    /// \brief 1 − r_α(λ_b) at every bin of a sample with jitter u. For a 0/1 kernel (boxes)
+    /// r_α is 1 exactly on its support, a few intervals: each zeroes a run of bins, found by
+    /// a division and checked against λ_b itself (the same test a kernel call would make).
+    /// Other kernels are evaluated bin by bin.
+    template <class Distribution>
+    sampled_spectrum<Bins> complement(const Distribution& dist, float u) const noexcept {
+        sampled_spectrum<Bins> out(1.0f);
+        const auto& lat = m_bins.lattice;
+        if constexpr (requires { dist.bound_kernel().support(); } &&
+                      requires { requires std::remove_cvref_t<decltype(dist.bound_kernel())>::indicator; }) {
+            const auto lambda = [&](std::size_t b) { return lat.lambda(b, u); };  // non-decreasing in b
+            for (const auto& s : dist.bound_kernel().support()) {
+                // [first, end): the bins with lo ≤ λ_b ≤ hi, from estimates moved onto the exact test
+                const auto estimate = [&](float edge) {
+                    const float x = (edge - lat.lambda_min()) / lat.bin_width() - u;
+                    return x <= 0.0f ? std::size_t{0} : std::min(Bins, static_cast<std::size_t>(x));
+                };
+                std::size_t first = estimate(s.lo), end = estimate(s.hi);
+                while (first > 0 && lambda(first - 1) >= s.lo) --first;
+                while (first < Bins && lambda(first) < s.lo) ++first;
+                while (end > 0 && lambda(end - 1) > s.hi) --end;
+                while (end < Bins && lambda(end) <= s.hi) ++end;
+                for (std::size_t b = first; b < end; ++b) out[b] = 0.0f;
+            }
+        } else {
+            for (std::size_t b = 0; b < Bins; ++b) out[b] = 1.0f - dist.restriction(lat.lambda(b, u));
+        }
+        return out;
+    }
     static float rho_k(const sampled_spectrum<C>& rho, std::size_t k) noexcept {
         if constexpr (Dispersive) return rho[k];
         else {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include "iris/render/camera.hpp"
 #include "iris/render/lights.hpp"
@@ -42,6 +43,19 @@ void run(const scene_desc& scene, const embree_tracer& tracer, const options& op
                        f, st, h);
 }
 
+/// \brief The instruction set a render runs with: `requested`, checked against this CPU.
+std::string choose_isa(const std::string& requested) {
+    const auto available = instruction_sets();
+    if (requested == "auto") return available.back();
+    for (const auto& a : available)
+        if (a == requested) return a;
+    for (const char* known : {"baseline", "avx2", "avx512"})
+        if (requested == known)
+            throw std::invalid_argument(fmt::format("instruction set '{}' is not supported by this CPU or build (available: auto, {})",
+                                                    requested, fmt::join(available, ", ")));
+    throw std::invalid_argument(fmt::format("unknown instruction set '{}' (expected auto, baseline, avx2 or avx512)", requested));
+}
+
 void validate(const options& o) {
     if (o.spp <= 0) throw std::invalid_argument(fmt::format("spp must be > 0, got {}", o.spp));
     if (o.nthold < 1) throw std::invalid_argument(fmt::format("nthold must be >= 1, got {}", o.nthold));
@@ -57,6 +71,7 @@ void validate(const options& o) {
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h) {
     validate(opt);
     const std::string config = config_name(opt.preset);  // throws for an unknown preset
+    (void)choose_isa(opt.isa);                            // throws for an unknown or unsupported one
     const int w = opt.width > 0 ? opt.width : scene.camera.width;
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
@@ -68,11 +83,22 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.height = ht;
     st.spp_total = opt.spp;
     st.dispersive_instantiation = opt.force_dispersive || scene.features().dispersive();
+    st.isa = choose_isa(opt.isa);
     dispatch_preset(opt.preset, [&]<class Preset>() {
         if (st.dispersive_instantiation) run<Preset, true>(scene, tracer, opt, out, st, h);
         else run<Preset, false>(scene, tracer, opt, out, st, h);
     });
     return st;
+}
+
+std::vector<std::string> instruction_sets() {
+    std::vector<std::string> v{"baseline"};
+#if IRIS_ISA_DISPATCH
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("x86-64-v3")) v.emplace_back("avx2");
+    if (__builtin_cpu_supports("x86-64-v4")) v.emplace_back("avx512");
+#endif
+    return v;
 }
 
 std::vector<preset_info> presets() {

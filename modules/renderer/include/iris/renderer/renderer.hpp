@@ -35,12 +35,17 @@ struct options {
     /// \brief Force the dispersive instantiation even on a scene without dispersion (for
     /// measuring what the non-dispersive one saves; results are identical in expectation).
     bool force_dispersive = false;
+    /// \brief Instruction set of the integrator's hot loop: "auto" (the widest this CPU
+    /// runs), or one of `instruction_sets()` ("baseline", "avx2", "avx512"). Every choice
+    /// gives bit-identical images; only the speed differs (docs/performance.md).
+    std::string isa = "auto";
 };
 
 /// \brief Where a render is: passed to the hooks and returned at the end.
 struct status {
     std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"
     bool dispersive_instantiation = false;
+    std::string isa;               ///< instruction set the hot loop ran with
     int width = 0, height = 0;
     int threads = 0;               ///< worker threads actually used
     int spp_done = 0;              ///< complete passes (every pixel has this many samples)
@@ -63,6 +68,11 @@ struct hooks {
 /// an unknown preset or bad options (spp ≤ 0, nthold < 1, size ≤ 0), with a message that
 /// lists what is accepted; std::runtime_error if the ray tracer cannot be built.
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h = {});
+
+/// \brief The instruction sets of the hot loop this build and CPU can run, narrowest
+/// first ("baseline" always; "avx2" = x86-64-v3, "avx512" = x86-64-v4 on x86-64 with GCC
+/// or Clang).
+std::vector<std::string> instruction_sets();
 
 /// \brief What the renderer knows about a preset.
 struct preset_info {
