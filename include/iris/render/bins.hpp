@@ -18,8 +18,8 @@
 /// SPEC's estimator. A tabulated spectrum that the lattice would not reproduce (knots off
 /// the lattice, a step inside the domain) is evaluated directly at the bins' wavelengths
 /// instead: slower, exact. The one approximation left is the refractive index of dispersive
-/// glass (Cauchy, Sellmeier: smooth curves, not tables), interpolated on the lattice with
-/// error ≤ h²/8·|n″| ≈ 1e-8 for glass at h = 1 nm.
+/// glass (Cauchy, Sellmeier: smooth curves, not tables) and its reciprocal, each
+/// interpolated on the lattice with error ≤ h²/8·|f″| ≈ 1e-8 for glass at h = 1 nm.
 
 #include <algorithm>
 #include <array>
@@ -171,12 +171,17 @@ public:
         return {m_rows[p.row].data(), m_rows[p.row + 1].data(), 1.0f - p.t, p.t};
     }
 
-    /// \brief The spectrum at every bin of a sample whose jitter sits at `p`.
-    sampled_spectrum<Bins> operator()(bin_position p) const {
+    /// \brief The spectrum at every bin of a sample whose jitter sits at `p`, into `out`.
+    void evaluate(bin_position p, sampled_spectrum<Bins>& out) const {
         std::array<float, Bins> scratch;  // written only for a directly evaluated spectrum
         const view v = at(p, scratch);
-        sampled_spectrum<Bins> out;
         for (std::size_t b = 0; b < Bins; ++b) out[b] = v[b];
+    }
+
+    /// \brief The spectrum at every bin of a sample whose jitter sits at `p`.
+    sampled_spectrum<Bins> operator()(bin_position p) const {
+        sampled_spectrum<Bins> out;
+        evaluate(p, out);
         return out;
     }
 
@@ -268,6 +273,7 @@ struct bin_tables {
     bin_lattice<Bins> lattice;
     std::vector<spectrum> albedo;  ///< per material; zero for dielectrics
     std::vector<spectrum> eta;     ///< per material; zero unless a dielectric
+    std::vector<spectrum> inv_eta; ///< 1/η, likewise (its own table: Fresnel at the bins needs no division for it)
     std::vector<spectrum> emission;
     spectrum environment;
     spectrum x_bar, y_bar, z_bar;
@@ -282,13 +288,16 @@ struct bin_tables {
             if (const auto* d = std::get_if<material::diffuse>(&m)) {
                 albedo.emplace_back(lattice, d->reflectance);
                 eta.emplace_back();
+                inv_eta.emplace_back();
             } else if (const auto* c = std::get_if<material::conductor>(&m)) {
                 albedo.emplace_back(lattice, c->reflectance);
                 eta.emplace_back();
+                inv_eta.emplace_back();
             } else {
                 const auto& g = std::get<material::dielectric>(m);
                 albedo.emplace_back();
                 eta.emplace_back(lattice, [&](double l) { return refractive_index(g.ior, l); });
+                inv_eta.emplace_back(lattice, [&](double l) { return 1.0 / refractive_index(g.ior, l); });
             }
         }
         for (const emitter_desc& e : scene.emitters) emission.emplace_back(lattice, e.radiance);

@@ -191,6 +191,13 @@ inline bool is_delta(const material_desc& m) noexcept {
     return false;
 }
 
+/// \brief A Lambertian surface is separable, f(λ)·|cos θi| = R(λ) · lambert_cos(n, ωo, ωi):
+/// |cos θi|/π on ωo's side of the surface (two-sided), 0 across it.
+inline float lambert_cos(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi) noexcept {
+    const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
+    return co * ci > 0.0f ? std::fabs(ci) * detail::inv_pi : 0.0f;
+}
+
 /// \brief f(ωo, ωi)·|cos θi| for non-delta materials (0 for delta ones) at N wavelengths,
 /// given the material's spectra at those wavelengths on demand: `albedo()` the reflectance
 /// (diffuse), `eta()` the index of refraction (dielectric). The integrator's B term passes
@@ -199,15 +206,15 @@ template <std::size_t N, class Albedo, class Eta>
 sampled_spectrum<N> bsdf_eval_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
                                     const glm::vec3& wi, Albedo&& albedo, Eta&& eta) noexcept {
     if (std::holds_alternative<material::diffuse>(mat)) {
-        const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
-        if (co * ci <= 0.0f) return {};  // two-sided Lambertian: same side only
-        return sampled_spectrum<N>(albedo()) * (std::fabs(ci) * detail::inv_pi);
+        const float c = lambert_cos(n, wo, wi);
+        if (c == 0.0f) return {};
+        return sampled_spectrum<N>(albedo()) * c;
     }
     if (const auto* g = std::get_if<material::dielectric>(&mat); g && !detail::effectively_smooth(*g)) {
         const frame fr = frame::from_normal(n);
         const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
         const detail::ggx m{g->roughness};
-        const sampled_spectrum<N> e = eta();
+        const auto e = eta();  // a spectrum, or anything indexable by k (the bins' lattice view)
         sampled_spectrum<N> out;
         for (std::size_t k = 0; k < N; ++k) out[k] = detail::rough_dielectric(m, lo, li, e[k]).f_cos;
         return out;
@@ -228,10 +235,7 @@ sampled_spectrum<N> bsdf_eval(const material_desc& mat, const glm::vec3& n, cons
 template <std::size_t N>
 sampled_spectrum<N> bsdf_pdf(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
                              const sampled_wavelengths<N>& wl) noexcept {
-    if (std::holds_alternative<material::diffuse>(mat)) {
-        const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
-        return sampled_spectrum<N>(co * ci > 0.0f ? std::fabs(ci) * detail::inv_pi : 0.0f);
-    }
+    if (std::holds_alternative<material::diffuse>(mat)) return sampled_spectrum<N>(lambert_cos(n, wo, wi));
     if (const auto* g = std::get_if<material::dielectric>(&mat); g && !detail::effectively_smooth(*g)) {
         const frame fr = frame::from_normal(n);
         const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
@@ -347,26 +351,28 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const g
 /// a dielectric, (1 − F(λ_b))/η_b² for transmission. Treating λ_b as if it took the hero's
 /// refracted direction is the method's (only) bias (SPEC §3). The material's spectra come
 /// on demand as in `bsdf_eval_given`: `albedo()` a conductor's reflectance, `eta()` a
-/// dielectric's index.
-template <std::size_t M, class Albedo, class Eta>
+/// dielectric's index and `inv_eta()` its reciprocal (the integrator reads both from
+/// tables, which saves a division per wavelength).
+template <std::size_t M, class Albedo, class Eta, class InvEta>
 sampled_spectrum<M> delta_weight_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, lobe kind,
-                                       Albedo&& albedo, Eta&& eta) noexcept {
+                                       Albedo&& albedo, Eta&& eta, InvEta&& inv_eta) noexcept {
     if (std::holds_alternative<material::conductor>(mat)) return sampled_spectrum<M>(albedo());
     if (!std::holds_alternative<material::dielectric>(mat)) return {};
     // fresnel_dielectric(co, η_k) for every k at once: the side (co's sign) is the same for
     // all wavelengths, so the loop body is branch-free arithmetic and selects, which the
     // compiler vectorises (80 bins at every glass vertex: this is the B term's hot loop).
-    // Two divisions per wavelength instead of six: 1/η, and one for both polarisations,
+    // One division per wavelength instead of six (1/η is given), for both polarisations:
     //   ½(r∥² + r⊥²) = ½[(a−b)²(c+d)² + (c−d)²(a+b)²] / [(a+b)²(c+d)²],
     // r∥ = (a−b)/(a+b), a = η′cos θi, b = cos θt; r⊥ = (c−d)/(c+d), c = cos θi, d = η′cos θt.
     const float co = std::clamp(glm::dot(n, wo), -1.0f, 1.0f);
     const bool flip = co < 0.0f, from_outside = co > 0.0f;  // as fresnel_dielectric and the hero's sample
     const bool reflection = kind == lobe::reflection;
     const float ci = std::fabs(co), sin2_i = 1.0f - ci * ci;
-    const sampled_spectrum<M> e = eta();
+    const auto e = eta();  // spectra, or anything indexable by k (the bins' lattice views)
+    const auto ie = inv_eta();
     sampled_spectrum<M> w;
     for (std::size_t k = 0; k < M; ++k) {
-        const float inv_e = 1.0f / e[k];
+        const float inv_e = ie[k];
         const float ef = flip ? inv_e : e[k], inv_ef = flip ? e[k] : inv_e;  // η′ and 1/η′
         const float sin2_t = sin2_i * (inv_ef * inv_ef);
         const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
@@ -380,6 +386,18 @@ sampled_spectrum<M> delta_weight_given(const material_desc& mat, const glm::vec3
         w[k] = reflection ? f : (1.0f - f) * (inv_et * inv_et);
     }
     return w;
+}
+
+/// \brief `delta_weight_given` with 1/η computed from `eta()`.
+template <std::size_t M, class Albedo, class Eta>
+sampled_spectrum<M> delta_weight_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, lobe kind,
+                                       Albedo&& albedo, Eta&& eta) noexcept {
+    return delta_weight_given<M>(mat, n, wo, kind, albedo, eta, [&] {
+        const auto e = eta();
+        sampled_spectrum<M> inv;
+        for (std::size_t k = 0; k < M; ++k) inv[k] = 1.0f / e[k];
+        return inv;
+    });
 }
 
 /// \brief `delta_weight_given` with the scene's spectra evaluated at `wl`.

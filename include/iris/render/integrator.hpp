@@ -60,11 +60,12 @@ struct path_settings {
 
 namespace detail {
 /// \brief The B term's bin count of a config: its bias policy's `bins` (80 — 5 nm on
-/// 380–780 nm — for PropagateUnused; fewer for `propagate_coarse<B>`), 80 otherwise.
+/// 380–780 nm — for PropagateUnused; fewer for `propagate_coarse<B>`); 1 (unused) for
+/// policies without a B term, so that they carry no 80-wide spectra.
 template <class Config>
 constexpr std::size_t bins_of() noexcept {
     if constexpr (requires { Config::bias_type::bins; }) return Config::bias_type::bins;
-    else return 80;
+    else return 1;
 }
 }  // namespace detail
 
@@ -103,9 +104,10 @@ public:
         }
 
         sampled_spectrum<C> beta(1.0f), rho(1.0f), rho_before(1.0f), lc;
-        sampled_spectrum<Bins> tb, lb;
+        // the B term's path throughput and radiance, a vertex's reflectance and BSDF value
+        sampled_spectrum<Bins> tb, lb, bin_refl, fb;
         if (use_bins) tb = sampled_spectrum<Bins>(1.0f);
-        std::array<float, Bins> scratch;  // for a spectrum off the bins' lattice (see binned_spectrum::at)
+        std::array<float, Bins> scratch, eta_scratch, inv_eta_scratch;  // for spectra off the bins' lattice (binned_spectrum::at)
         bool prev_delta = true;  // the camera ray: no light-sampling strategy competes
         float prev_pdf = 0.0f;
 
@@ -153,16 +155,18 @@ public:
             // a diffuse vertex reads its reflectance twice (NEE and BSDF sampling): look it up
             // once, for the hero wavelengths and for the bins
             const bool has_albedo = !std::holds_alternative<material::dielectric>(mat);
+            // Lambertian: the bins' BSDF is bin_refl times one number (lambert_cos), no 80-wide product
+            const bool lambertian = std::holds_alternative<material::diffuse>(mat);
             sampled_spectrum<C> hero_refl;
-            sampled_spectrum<Bins> bin_refl;
             if (has_albedo) {
                 hero_refl = m_hero.albedo[shape.material](wl);
-                if (use_bins) bin_refl = m_bins.albedo[shape.material](bp);
+                if (use_bins) m_bins.albedo[shape.material].evaluate(bp, bin_refl);
             }
             const auto hero_albedo = [&] { return hero_refl; };
             const auto hero_eta = [&] { return detail::etas(std::get<material::dielectric>(mat).ior, wl); };
             const auto bin_albedo = [&]() -> const sampled_spectrum<Bins>& { return bin_refl; };
-            const auto bin_eta = [&] { return m_bins.eta[shape.material](bp); };
+            const auto bin_eta = [&] { return m_bins.eta[shape.material].at(bp, eta_scratch); };
+            const auto bin_inv_eta = [&] { return m_bins.inv_eta[shape.material].at(bp, inv_eta_scratch); };
 
             // next-event estimation
             if (!delta && !m_lights.empty()) {
@@ -180,9 +184,15 @@ public:
                         // the bins' BSDF too: a surface black at every hero wavelength (say,
                         // inside the restriction's windows) may still reflect at the bins,
                         // and B must keep its light-sampling share there (SPEC U1)
-                        sampled_spectrum<Bins> fb;
-                        if (use_bins) fb = bsdf_eval_given<Bins>(mat, ng, wo, wi, bin_albedo, bin_eta);
-                        if (!f.is_zero() || (use_bins && !fb.is_zero())) {
+                        float cb = 0.0f;  // Lambertian: the bins' value is bin_refl · cb
+                        if (use_bins) {
+                            if (lambertian) cb = lambert_cos(ng, wo, wi);
+                            else fb = bsdf_eval_given<Bins>(mat, ng, wo, wi, bin_albedo, bin_eta);
+                        }
+                        const auto bins_reflect = [&] {
+                            return use_bins && (lambertian ? cb != 0.0f && !bin_refl.is_zero() : !fb.is_zero());
+                        };
+                        if (!f.is_zero() || bins_reflect()) {
                             ++out.rays;
                             const glm::vec3 o2 = offset_ray_origin(p, ng, wi);
                             if (!tracer.occluded(o2, wi, glm::length(ls->point - o2) * (1.0f - 1e-4f))) {
@@ -193,7 +203,9 @@ public:
                                 lc += beta * f * m_hero.emission[ls->emitter](wl) / (pl * denom);
                                 if (use_bins) {
                                     const float w_hero = pl / (pl + pb[0]);
-                                    add_light(lb, tb, fb, m_bins.emission[ls->emitter].at(bp, scratch), w_hero / pl);
+                                    const auto e = m_bins.emission[ls->emitter].at(bp, scratch);
+                                    if (lambertian) add_light(lb, tb, bin_refl, e, cb * (w_hero / pl));
+                                    else add_light(lb, tb, fb, e, w_hero / pl);
                                 }
                             }
                         }
@@ -210,7 +222,9 @@ public:
             if (use_bins) {
                 const float inv_p0 = 1.0f / p0;
                 if (bs->delta)
-                    scale(tb, delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta), inv_p0);
+                    scale(tb, delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta, bin_inv_eta), inv_p0);
+                else if (lambertian)
+                    scale(tb, bin_refl, lambert_cos(ng, wo, bs->wi) * inv_p0);
                 else
                     scale(tb, bsdf_eval_given<Bins>(mat, ng, wo, bs->wi, bin_albedo, bin_eta), inv_p0);
             }
@@ -228,8 +242,10 @@ public:
                 if (use_bins) m = std::fmax(m, tb.max_value());
                 const float survive = std::fmin(1.0f, m);
                 if (!(survive > 0.0f) || rng.next() >= survive) break;
-                beta /= survive;
-                if (use_bins) tb /= survive;
+                if (survive < 1.0f) {  // x / 1 = x: skip the pass
+                    beta /= survive;
+                    if (use_bins) tb /= survive;
+                }
             }
             origin = offset_ray_origin(p, ng, bs->wi);
             dir = bs->wi;
