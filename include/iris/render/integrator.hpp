@@ -95,18 +95,19 @@ public:
         // B-term bins (only while the restriction is not yet relaxed)
         bool use_bins = propagates && alpha < 1.0f;
         bin_position bp;
-        sampled_spectrum<Bins> outside;  // 1 − r_α(λ_b): the share of each bin that B carries
+        // the B term's path throughput, which starts at 1 − r_α(λ_b) (the share of each bin
+        // that B carries: bins inside the windows start and stay 0), its radiance, and a
+        // vertex's reflectance and BSDF value at the bins
+        sampled_spectrum<Bins> tb, lb, bin_refl, fb;
+        float tb_max = 0.0f;  // max of tb, kept by every update of tb (for Russian roulette)
         if (use_bins) {
             const float jitter = rng.next();
             bp = m_bins.lattice.position(jitter);
-            outside = complement(dist, jitter);
-            use_bins = !outside.is_zero();  // every bin inside the windows: B = 0
+            use_bins = complement(dist, jitter, tb);  // false: every bin inside the windows, B = 0
+            tb_max = 1.0f;
         }
 
         sampled_spectrum<C> beta(1.0f), rho(1.0f), rho_before(1.0f), lc;
-        // the B term's path throughput and radiance, a vertex's reflectance and BSDF value
-        sampled_spectrum<Bins> tb, lb, bin_refl, fb;
-        if (use_bins) tb = sampled_spectrum<Bins>(1.0f);
         std::array<float, Bins> scratch, eta_scratch, inv_eta_scratch;  // for spectra off the bins' lattice (binned_spectrum::at)
         bool prev_delta = true;  // the camera ray: no light-sampling strategy competes
         float prev_pdf = 0.0f;
@@ -222,11 +223,11 @@ public:
             if (use_bins) {
                 const float inv_p0 = 1.0f / p0;
                 if (bs->delta)
-                    scale(tb, delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta, bin_inv_eta), inv_p0);
+                    tb_max = scale(tb, delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta, bin_inv_eta), inv_p0);
                 else if (lambertian)
-                    scale(tb, bin_refl, lambert_cos(ng, wo, bs->wi) * inv_p0);
+                    tb_max = scale(tb, bin_refl, lambert_cos(ng, wo, bs->wi) * inv_p0);
                 else
-                    scale(tb, bsdf_eval_given<Bins>(mat, ng, wo, bs->wi, bin_albedo, bin_eta), inv_p0);
+                    tb_max = scale(tb, bsdf_eval_given<Bins>(mat, ng, wo, bs->wi, bin_albedo, bin_eta), inv_p0);
             }
             beta *= bs->f_cos / p0;
             if constexpr (Dispersive) {
@@ -236,11 +237,12 @@ public:
             prev_delta = bs->delta;
             prev_pdf = p0;
 
-            // Russian roulette on the largest remaining weight (same for every λ: MIS ratios unchanged)
+            // Russian roulette on the largest remaining weight (same for every λ: MIS ratios
+            // unchanged), the B term's counted as it is carried (bins in the windows are 0)
             if (depth + 1 >= m_settings.rr_start_depth) {
                 float m = beta.max_value();
-                if (use_bins) m = std::fmax(m, tb.max_value());
-                const float survive = std::fmin(1.0f, m);
+                if (use_bins && tb_max > m) m = tb_max;
+                const float survive = m < 1.0f ? m : 1.0f;  // (NaN → 1, as fmin)
                 if (!(survive > 0.0f) || rng.next() >= survive) break;
                 if (survive < 1.0f) {  // x / 1 = x: skip the pass
                     beta /= survive;
@@ -267,7 +269,7 @@ public:
             constexpr std::size_t lanes = 8;
             std::array<float, lanes> sx{}, sy{}, sz{};
             const auto add = [&](std::size_t b, std::size_t l) {
-                const float w = outside[b] * lb[b];
+                const float w = lb[b];  // 1 − r_α(λ_b) is in the throughput already
                 sx[l] += w * xb[b];
                 sy[l] += w * yb[b];
                 sz[l] += w * zb[b];
@@ -305,38 +307,64 @@ private:
                           const sampled_spectrum<Bins>& f, const bin_view& e, float s) noexcept {
         for (std::size_t b = 0; b < Bins; ++b) lb[b] += tb[b] * f[b] * e[b] * s;
     }
-    /// \brief tb ← tb · f · s.
-    static void scale(sampled_spectrum<Bins>& tb, const sampled_spectrum<Bins>& f, float s) noexcept {
-        for (std::size_t b = 0; b < Bins; ++b) tb[b] *= f[b] * s;
+    /// \brief tb ← tb · f · s; returns the largest new tb (NaNs skipped), found in the same
+    /// pass in 16 interleaved maxima (a maximum does not depend on the order).
+    static float scale(sampled_spectrum<Bins>& tb, const sampled_spectrum<Bins>& f, float s) noexcept {
+        constexpr std::size_t lanes = 16;
+        std::array<float, lanes> m;
+        m.fill(0.0f);  // tb ≥ 0
+        const auto step = [&](std::size_t b, std::size_t l) {
+            tb[b] *= f[b] * s;
+            m[l] = tb[b] > m[l] ? tb[b] : m[l];
+        };
+        std::size_t b0 = 0;
+        for (; b0 + lanes <= Bins; b0 += lanes)
+            for (std::size_t l = 0; l < lanes; ++l) step(b0 + l, l);
+        for (std::size_t l = 0; b0 + l < Bins; ++l) step(b0 + l, l);
+        float out = 0.0f;
+        for (float v : m) out = v > out ? v : out;
+        return out;
     }
-    /// \brief 1 − r_α(λ_b) at every bin of a sample with jitter u. For a 0/1 kernel (boxes)
-    /// r_α is 1 exactly on its support, a few intervals: each zeroes a run of bins, found by
-    /// a division and checked against λ_b itself (the same test a kernel call would make).
-    /// Other kernels are evaluated bin by bin.
+    /// \brief out ← 1 − r_α(λ_b) at every bin of a sample with jitter u; false if that is 0
+    /// everywhere. For a 0/1 kernel (boxes) r_α is 1 exactly on its support, a few disjoint
+    /// intervals: each covers a run of bins [first, end), found by a division and moved onto
+    /// the exact test lo ≤ λ_b ≤ hi (the one a kernel call would make), then zeroed in one
+    /// branch-free pass. Other kernels are evaluated bin by bin.
     template <class Distribution>
-    sampled_spectrum<Bins> complement(const Distribution& dist, float u) const noexcept {
-        sampled_spectrum<Bins> out(1.0f);
+    bool complement(const Distribution& dist, float u, sampled_spectrum<Bins>& out) const noexcept {
         const auto& lat = m_bins.lattice;
         if constexpr (requires { dist.bound_kernel().support(); } &&
                       requires { requires std::remove_cvref_t<decltype(dist.bound_kernel())>::indicator; }) {
-            const auto lambda = [&](std::size_t b) { return lat.lambda(b, u); };  // non-decreasing in b
+            out = sampled_spectrum<Bins>(1.0f);
+            const auto lambda = [&](int b) { return lat.lambda(static_cast<std::size_t>(b), u); };  // non-decreasing
+            constexpr int n = static_cast<int>(Bins);
+            int covered = 0;
             for (const auto& s : dist.bound_kernel().support()) {
-                // [first, end): the bins with lo ≤ λ_b ≤ hi, from estimates moved onto the exact test
                 const auto estimate = [&](float edge) {
                     const float x = (edge - lat.lambda_min()) / lat.bin_width() - u;
-                    return x <= 0.0f ? std::size_t{0} : std::min(Bins, static_cast<std::size_t>(x));
+                    return x <= 0.0f ? 0 : (x >= static_cast<float>(n) ? n : static_cast<int>(x));
                 };
-                std::size_t first = estimate(s.lo), end = estimate(s.hi);
+                int first = estimate(s.lo), end = estimate(s.hi);
                 while (first > 0 && lambda(first - 1) >= s.lo) --first;
-                while (first < Bins && lambda(first) < s.lo) ++first;
+                while (first < n && lambda(first) < s.lo) ++first;
                 while (end > 0 && lambda(end - 1) > s.hi) --end;
-                while (end < Bins && lambda(end) <= s.hi) ++end;
-                for (std::size_t b = first; b < end; ++b) out[b] = 0.0f;
+                while (end < n && lambda(end) <= s.hi) ++end;
+                if (end <= first) continue;
+                covered += end - first;
+                const auto width = static_cast<unsigned>(end - first);
+                for (int b = 0; b < n; ++b)  // b ∈ [first, end) as one unsigned comparison
+                    out[static_cast<std::size_t>(b)] =
+                        static_cast<unsigned>(b - first) < width ? 0.0f : out[static_cast<std::size_t>(b)];
             }
+            return covered < n;  // the intervals are disjoint: their runs are too
         } else {
-            for (std::size_t b = 0; b < Bins; ++b) out[b] = 1.0f - dist.restriction(lat.lambda(b, u));
+            bool any = false;
+            for (std::size_t b = 0; b < Bins; ++b) {
+                out[b] = 1.0f - dist.restriction(lat.lambda(b, u));
+                any |= out[b] != 0.0f;
+            }
+            return any;
         }
-        return out;
     }
     static float rho_k(const sampled_spectrum<C>& rho, std::size_t k) noexcept {
         if constexpr (Dispersive) return rho[k];
