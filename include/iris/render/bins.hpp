@@ -18,8 +18,8 @@
 /// SPEC's estimator. A tabulated spectrum that the lattice would not reproduce (knots off
 /// the lattice, a step inside the domain) is evaluated directly at the bins' wavelengths
 /// instead: slower, exact. The one approximation left is the refractive index of dispersive
-/// glass (Cauchy, Sellmeier: smooth curves, not tables) and its reciprocal, each
-/// interpolated on the lattice with error ≤ h²/8·|f″| ≈ 1e-8 for glass at h = 1 nm.
+/// glass (Cauchy, Sellmeier: smooth curves, not tables), and η² and 1/η² for Fresnel,
+/// each interpolated on the lattice with error ≤ h²/8·|f″| ≈ 1e-8 for glass at h = 1 nm.
 
 #include <algorithm>
 #include <array>
@@ -273,7 +273,8 @@ struct bin_tables {
     bin_lattice<Bins> lattice;
     std::vector<spectrum> albedo;  ///< per material; zero for dielectrics
     std::vector<spectrum> eta;     ///< per material; zero unless a dielectric
-    std::vector<spectrum> inv_eta; ///< 1/η, likewise (its own table: Fresnel at the bins needs no division for it)
+    std::vector<spectrum> eta2;     ///< η², likewise (Fresnel at the bins reads η² and 1/η², no squaring or division)
+    std::vector<spectrum> inv_eta2; ///< 1/η², likewise
     std::vector<spectrum> emission;
     spectrum environment;
     spectrum x_bar, y_bar, z_bar;
@@ -288,16 +289,19 @@ struct bin_tables {
             if (const auto* d = std::get_if<material::diffuse>(&m)) {
                 albedo.emplace_back(lattice, d->reflectance);
                 eta.emplace_back();
-                inv_eta.emplace_back();
+                eta2.emplace_back();
+                inv_eta2.emplace_back();
             } else if (const auto* c = std::get_if<material::conductor>(&m)) {
                 albedo.emplace_back(lattice, c->reflectance);
                 eta.emplace_back();
-                inv_eta.emplace_back();
+                eta2.emplace_back();
+                inv_eta2.emplace_back();
             } else {
                 const auto& g = std::get<material::dielectric>(m);
                 albedo.emplace_back();
                 eta.emplace_back(lattice, [&](double l) { return refractive_index(g.ior, l); });
-                inv_eta.emplace_back(lattice, [&](double l) { return 1.0 / refractive_index(g.ior, l); });
+                eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(g.ior, l), 2.0); });
+                inv_eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(g.ior, l), -2.0); });
             }
         }
         for (const emitter_desc& e : scene.emitters) emission.emplace_back(lattice, e.radiance);

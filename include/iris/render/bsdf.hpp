@@ -350,54 +350,53 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const g
 /// follow the hero's lobe and direction: R(λ_b) off a conductor, F(λ_b) for reflection off
 /// a dielectric, (1 − F(λ_b))/η_b² for transmission. Treating λ_b as if it took the hero's
 /// refracted direction is the method's (only) bias (SPEC §3). The material's spectra come
-/// on demand as in `bsdf_eval_given`: `albedo()` a conductor's reflectance, `eta()` a
-/// dielectric's index and `inv_eta()` its reciprocal (the integrator reads both from
-/// tables, which saves a division per wavelength).
-template <std::size_t M, class Albedo, class Eta, class InvEta>
+/// on demand as in `bsdf_eval_given`: `albedo()` a conductor's reflectance, `eta2()` a
+/// dielectric's η² and `inv_eta2()` its 1/η² (the integrator reads both from tables).
+template <std::size_t M, class Albedo, class Eta2, class InvEta2>
 sampled_spectrum<M> delta_weight_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, lobe kind,
-                                       Albedo&& albedo, Eta&& eta, InvEta&& inv_eta) noexcept {
+                                       Albedo&& albedo, Eta2&& eta2, InvEta2&& inv_eta2) noexcept {
     if (std::holds_alternative<material::conductor>(mat)) return sampled_spectrum<M>(albedo());
     if (!std::holds_alternative<material::dielectric>(mat)) return {};
-    // fresnel_dielectric(co, η_k) for every k at once: the side (co's sign) is the same for
-    // all wavelengths, so the loop body is branch-free arithmetic and selects, which the
-    // compiler vectorises (80 bins at every glass vertex: this is the B term's hot loop).
-    // One division per wavelength instead of six (1/η is given), for both polarisations:
-    //   ½(r∥² + r⊥²) = ½[(a−b)²(c+d)² + (c−d)²(a+b)²] / [(a+b)²(c+d)²],
-    // r∥ = (a−b)/(a+b), a = η′cos θi, b = cos θt; r⊥ = (c−d)/(c+d), c = cos θi, d = η′cos θt.
+    // fresnel_dielectric(co, η_k) for every k at once, in the form of Walter et al. 2007
+    // (eq. 22) with c = |cos θi| and g = √(η′² − 1 + c²) (= η′ cos θt):
+    //   F = ½ (g−c)² [(c(g−c)+1)² + (c(g+c)−1)²] / [(g+c)² (c(g−c)+1)²],  F = 1 if g² ≤ 0,
+    // one square root and one division per wavelength, and η′² read, not computed. The side
+    // (co's sign) is the same for all wavelengths, so the loop is branch-free arithmetic and
+    // selects, which the compiler vectorises (80 bins at every glass vertex: this is the B
+    // term's hot loop; choosing the tables once, outside the loop, stops GCC vectorising it).
     const float co = std::clamp(glm::dot(n, wo), -1.0f, 1.0f);
     const bool flip = co < 0.0f, from_outside = co > 0.0f;  // as fresnel_dielectric and the hero's sample
     const bool reflection = kind == lobe::reflection;
-    const float ci = std::fabs(co), sin2_i = 1.0f - ci * ci;
-    const auto e = eta();  // spectra, or anything indexable by k (the bins' lattice views)
-    const auto ie = inv_eta();
+    const float c = std::fabs(co), c2 = c * c;
+    const auto sq = eta2();  // spectra, or anything indexable by k (the bins' lattice views)
+    const auto isq = inv_eta2();
     sampled_spectrum<M> w;
     for (std::size_t k = 0; k < M; ++k) {
-        const float inv_e = ie[k];
-        const float ef = flip ? inv_e : e[k], inv_ef = flip ? e[k] : inv_e;  // η′ and 1/η′
-        const float sin2_t = sin2_i * (inv_ef * inv_ef);
-        const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
-        const float a = ef * ci, d = ef * cos_t;
-        const float ap = a + cos_t, am = a - cos_t, cp = ci + d, cm = ci - d;
-        const float num = am * am * (cp * cp) + cm * cm * (ap * ap);
-        const float den = ap * ap * (cp * cp);
-        const float ratio = 0.5f * num / den;           // computed everywhere: a select, not a branch
-        const float f = sin2_t >= 1.0f ? 1.0f : ratio;  // TIR (also where den = 0)
-        const float inv_et = from_outside ? inv_e : e[k];           // 1/η_t-over-η_i of the hero's side
-        w[k] = reflection ? f : (1.0f - f) * (inv_et * inv_et);
+        const float e2 = sq[k], ie2 = isq[k];
+        const float ef2 = flip ? ie2 : e2;              // η′²: the relative index seen from ωo's side
+        const float inv_et2 = from_outside ? ie2 : e2;  // 1/η′² of the hero's transmission
+        const float g2 = ef2 - 1.0f + c2;
+        const float g = std::sqrt(std::max(0.0f, g2));
+        const float gm = g - c, gp = g + c;
+        const float u = c * gm + 1.0f, v = c * gp - 1.0f;
+        const float ratio = 0.5f * (gm * gm * (u * u + v * v)) / (gp * gp * (u * u));  // everywhere: a select, not a branch
+        const float f = g2 > 0.0f ? ratio : 1.0f;  // total internal reflection (also where g + c = 0)
+        w[k] = reflection ? f : (1.0f - f) * inv_et2;
     }
     return w;
 }
 
-/// \brief `delta_weight_given` with 1/η computed from `eta()`.
+/// \brief `delta_weight_given` with η² and 1/η² computed from `eta()`, the index.
 template <std::size_t M, class Albedo, class Eta>
 sampled_spectrum<M> delta_weight_given(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo, lobe kind,
                                        Albedo&& albedo, Eta&& eta) noexcept {
-    return delta_weight_given<M>(mat, n, wo, kind, albedo, eta, [&] {
-        const auto e = eta();
-        sampled_spectrum<M> inv;
-        for (std::size_t k = 0; k < M; ++k) inv[k] = 1.0f / e[k];
-        return inv;
-    });
+    const auto e = eta();
+    sampled_spectrum<M> sq, inv;
+    for (std::size_t k = 0; k < M; ++k) {
+        sq[k] = e[k] * e[k];
+        inv[k] = 1.0f / sq[k];
+    }
+    return delta_weight_given<M>(mat, n, wo, kind, albedo, [&] { return sq; }, [&] { return inv; });
 }
 
 /// \brief `delta_weight_given` with the scene's spectra evaluated at `wl`.

@@ -25,6 +25,7 @@
 /// or tracked (the feature summary picks it; docs/performance.md measures what it saves).
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -108,7 +109,7 @@ public:
         }
 
         sampled_spectrum<C> beta(1.0f), rho(1.0f), rho_before(1.0f), lc;
-        std::array<float, Bins> scratch, eta_scratch, inv_eta_scratch;  // for spectra off the bins' lattice (binned_spectrum::at)
+        std::array<float, Bins> scratch, eta_scratch, eta2_scratch, inv_eta2_scratch;  // for spectra off the bins' lattice (binned_spectrum::at)
         bool prev_delta = true;  // the camera ray: no light-sampling strategy competes
         float prev_pdf = 0.0f;
 
@@ -167,7 +168,8 @@ public:
             const auto hero_eta = [&] { return detail::etas(std::get<material::dielectric>(mat).ior, wl); };
             const auto bin_albedo = [&]() -> const sampled_spectrum<Bins>& { return bin_refl; };
             const auto bin_eta = [&] { return m_bins.eta[shape.material].at(bp, eta_scratch); };
-            const auto bin_inv_eta = [&] { return m_bins.inv_eta[shape.material].at(bp, inv_eta_scratch); };
+            const auto bin_eta2 = [&] { return m_bins.eta2[shape.material].at(bp, eta2_scratch); };
+            const auto bin_inv_eta2 = [&] { return m_bins.inv_eta2[shape.material].at(bp, inv_eta2_scratch); };
 
             // next-event estimation
             if (!delta && !m_lights.empty()) {
@@ -223,7 +225,7 @@ public:
             if (use_bins) {
                 const float inv_p0 = 1.0f / p0;
                 if (bs->delta)
-                    tb_max = scale(tb, delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta, bin_inv_eta), inv_p0);
+                    tb_max = scale(tb, delta_weight_given<Bins>(mat, ng, wo, bs->kind, bin_albedo, bin_eta2, bin_inv_eta2), inv_p0);
                 else if (lambertian)
                     tb_max = scale(tb, bin_refl, lambert_cos(ng, wo, bs->wi) * inv_p0);
                 else
@@ -307,23 +309,26 @@ private:
                           const sampled_spectrum<Bins>& f, const bin_view& e, float s) noexcept {
         for (std::size_t b = 0; b < Bins; ++b) lb[b] += tb[b] * f[b] * e[b] * s;
     }
-    /// \brief tb ← tb · f · s; returns the largest new tb (NaNs skipped), found in the same
-    /// pass in 16 interleaved maxima (a maximum does not depend on the order).
+    /// \brief tb ← tb · f · s; returns the largest new tb. The throughput is ≥ 0, and for
+    /// floats ≥ +0 the order of their bit patterns as int32 is their numeric order (negative
+    /// values, −0 and negative NaNs count as 0; a positive NaN wins and the caller's
+    /// `tb_max > m` then ignores it): an integer maximum vectorises, a float one that
+    /// honours NaN does not. In 16 interleaved lanes (the order cannot change a maximum).
     static float scale(sampled_spectrum<Bins>& tb, const sampled_spectrum<Bins>& f, float s) noexcept {
+        for (std::size_t b = 0; b < Bins; ++b) tb[b] *= f[b] * s;
         constexpr std::size_t lanes = 16;
-        std::array<float, lanes> m;
-        m.fill(0.0f);  // tb ≥ 0
+        std::array<std::int32_t, lanes> m{};
         const auto step = [&](std::size_t b, std::size_t l) {
-            tb[b] *= f[b] * s;
-            m[l] = tb[b] > m[l] ? tb[b] : m[l];
+            const auto v = std::bit_cast<std::int32_t>(tb[b]);
+            m[l] = v > m[l] ? v : m[l];
         };
         std::size_t b0 = 0;
         for (; b0 + lanes <= Bins; b0 += lanes)
             for (std::size_t l = 0; l < lanes; ++l) step(b0 + l, l);
         for (std::size_t l = 0; b0 + l < Bins; ++l) step(b0 + l, l);
-        float out = 0.0f;
-        for (float v : m) out = v > out ? v : out;
-        return out;
+        std::int32_t out = 0;
+        for (auto v : m) out = v > out ? v : out;
+        return std::bit_cast<float>(out);
     }
     /// \brief out ← 1 − r_α(λ_b) at every bin of a sample with jitter u; false if that is 0
     /// everywhere. For a 0/1 kernel (boxes) r_α is 1 exactly on its support, a few disjoint
