@@ -15,7 +15,9 @@
 /// with the hero's own BSDF/light balance weights; λ_b = λmin + (b + u)Δλ (one jitter u
 /// per sample shared by all bins, so each λ_b is uniform in its bin). The spectra of the
 /// B term are read from tables on the bins' lattice built once per integrator
-/// (iris/render/bins.hpp): each is one blend of two rows, not a per-bin table lookup.
+/// (iris/render/bins.hpp): each is one blend of two rows, not a per-bin table lookup. The
+/// bins' throughput starts at 1 − r_α(λ_b), so the sum over bins needs no weight at the end
+/// and Russian roulette sees only what B carries.
 /// The C wavelengths read reflectances and emitters from float tables on an exact 1 nm
 /// lattice (`hero_tables`, same header), falling back to the scene's tables where the
 /// lattice would not reproduce them exactly.
