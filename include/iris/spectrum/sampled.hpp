@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
-#include <limits>
 
 namespace iris {
 
@@ -62,37 +61,16 @@ public:
         return a;
     }
 
-    /// \brief Σ of the values. Up to 15 values are added in order; wider spectra (the bias
-    /// term's bins) in 8 interleaved partial sums, element i into sum i mod 8, combined in a
-    /// fixed tree: a fixed order, so the same result on every instruction set, that the
-    /// compiler can vectorise (one long chain of dependent adds would be latency-bound).
     constexpr float sum() const noexcept {
-        if constexpr (N < 2 * lanes) {
-            float s = 0.0f;
-            for (float v : m_v) s += v;
-            return s;
-        } else {
-            return reduce_lanes(0.0f, [](float a, float b) { return a + b; });
-        }
+        float s = 0.0f;
+        for (float v : m_v) s += v;
+        return s;
     }
     constexpr float average() const noexcept { return sum() / static_cast<float>(N); }
-    /// \brief The largest value (16 or more values: in 8 interleaved partial maxima, as
-    /// `sum`, which skip NaNs — all NaN gives −∞).
-    constexpr float max_value() const noexcept {
-        if constexpr (N < 2 * lanes) {
-            return *std::max_element(m_v.begin(), m_v.end());
-        } else {
-            return reduce_lanes(-std::numeric_limits<float>::infinity(), [](float a, float b) { return b > a ? b : a; });
-        }
-    }
+    constexpr float max_value() const noexcept { return *std::max_element(m_v.begin(), m_v.end()); }
     constexpr float min_value() const noexcept { return *std::min_element(m_v.begin(), m_v.end()); }
     constexpr bool is_zero() const noexcept {
-        if constexpr (N < 2 * lanes) {
-            return std::all_of(m_v.begin(), m_v.end(), [](float v) { return v == 0.0f; });
-        } else {
-            // no early exit: a branch-free count the compiler vectorises
-            return reduce_lanes(0.0f, [](float a, float b) { return b != 0.0f ? 1.0f : a; }) == 0.0f;
-        }
+        return std::all_of(m_v.begin(), m_v.end(), [](float v) { return v == 0.0f; });
     }
     bool all_finite() const noexcept {
         return std::all_of(m_v.begin(), m_v.end(), [](float v) { return std::isfinite(v); });
@@ -107,22 +85,6 @@ public:
     }
 
 private:
-    static constexpr std::size_t lanes = 8;
-    /// \brief Fold `op` over the values in `lanes` interleaved partial results, combined
-    /// pairwise ((0,4), (2,6), (1,5), (3,7) → …): the order is fixed by the code, not the ISA.
-    template <class Op>
-    constexpr float reduce_lanes(float init, Op op) const noexcept {
-        std::array<float, lanes> acc;
-        acc.fill(init);
-        std::size_t i = 0;
-        for (; i + lanes <= N; i += lanes)  // blocks of `lanes`: the inner loop is one or two vector ops
-            for (std::size_t l = 0; l < lanes; ++l) acc[l] = op(acc[l], m_v[i + l]);
-        for (std::size_t l = 0; i + l < N; ++l) acc[l] = op(acc[l], m_v[i + l]);
-        for (std::size_t w = lanes / 2; w > 0; w /= 2)
-            for (std::size_t l = 0; l < w; ++l) acc[l] = op(acc[l], acc[l + w]);
-        return acc[0];
-    }
-
     std::array<float, N> m_v{};
 };
 

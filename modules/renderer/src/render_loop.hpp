@@ -51,8 +51,8 @@ inline std::uint64_t tile_body(const Integrator& integ, const Tracer& tracer, co
 // each copy, so all of it is compiled for that target (the B term's 80-wide spectra are
 // 5 AVX-512 registers instead of 20 SSE ones); calls that leave the translation unit
 // (Embree, libm) stay as they are. The renderer is compiled with -ffp-contract=off: no
-// copy fuses a multiply and an add, no loop reassociates a sum (iris's wide reductions
-// have a fixed order, sampled_spectrum::sum), and division and square root are correctly
+// copy fuses a multiply and an add, no loop reassociates a sum (the B term's XYZ sums run
+// in lanes fixed by the code, path_integrator::trace), and division and square root are correctly
 // rounded at any width — so every copy computes bit-identical images.
 template <class Integrator, class Tracer, class Distribution>
 [[gnu::flatten]] std::uint64_t tile_baseline(const Integrator& integ, const Tracer& tracer, const camera_rays& cam,

@@ -71,7 +71,7 @@ void validate(const options& o) {
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h) {
     validate(opt);
     const std::string config = config_name(opt.preset);  // throws for an unknown preset
-    (void)choose_isa(opt.isa);                            // throws for an unknown or unsupported one
+    const std::string isa = choose_isa(opt.isa);          // throws for an unknown or unsupported one
     const int w = opt.width > 0 ? opt.width : scene.camera.width;
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
@@ -83,7 +83,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.height = ht;
     st.spp_total = opt.spp;
     st.dispersive_instantiation = opt.force_dispersive || scene.features().dispersive();
-    st.isa = choose_isa(opt.isa);
+    st.isa = isa;
     dispatch_preset(opt.preset, [&]<class Preset>() {
         if (st.dispersive_instantiation) run<Preset, true>(scene, tracer, opt, out, st, h);
         else run<Preset, false>(scene, tracer, opt, out, st, h);
