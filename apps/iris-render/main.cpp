@@ -42,7 +42,7 @@ extern "C" void on_sigint(int) { g_interrupted.store(true); }
 namespace fs = std::filesystem;
 
 struct args {
-    std::string scene, preset = "hwss", out, png, stats, isa = "auto";
+    std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
     double every_seconds = 0.0;
     std::uint64_t seed = 1;
@@ -82,6 +82,7 @@ iris::exr::metadata metadata(const iris::scene_desc& s, const args& a, const iri
     return {{"iris:scene", s.name},
             {"iris:preset", a.preset},
             {"iris:config", st.config_name},
+            {"iris:estimator", st.estimator},
             {"iris:spp", std::to_string(st.spp_done)},
             {"iris:seconds", fmt::format("{:.3f}", st.seconds)},
             {"iris:seed", std::to_string(a.seed)},
@@ -101,6 +102,7 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
     nlohmann::json j = {{"scene", s.name},
                         {"preset", a.preset},
                         {"config", st.config_name},
+                        {"estimator", st.estimator},
                         {"dispersive_instantiation", st.dispersive_instantiation},
                         {"spp", st.spp_done},
                         {"width", st.width},
@@ -166,6 +168,7 @@ int run_render(const args& a) {
     opt.height = a.height;
     opt.path.max_depth = a.max_depth;
     opt.isa = a.isa;
+    opt.estimator = a.estimator;
 
     std::signal(SIGINT, on_sigint);
     const bool tty = ::isatty(STDERR_FILENO) != 0;
@@ -242,6 +245,12 @@ int main(int argc, char** argv) {
                                "{} (the images are bit-identical; only the speed differs)",
                                fmt::join(iris::renderer::instruction_sets(), ", ")))
         ->check(CLI::IsMember({"auto", "baseline", "avx2", "avx512"}))
+        ->capture_default_str();
+    app.add_option("--estimator", a.estimator,
+                   "nee-mis (the preset's path tracer: next-event estimation with MIS) or bsdf-only (pure BSDF "
+                   "sampling at one uniform wavelength, no light sampling: the independent check of nee-mis; the "
+                   "preset is not used)")
+        ->check(CLI::IsMember({"nee-mis", "bsdf-only"}))
         ->capture_default_str();
     app.add_flag("--half", a.half, "write half-float EXR (default float)");
     app.add_flag("--list-presets", a.list_presets, "list the sampling presets and exit");

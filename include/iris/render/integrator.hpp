@@ -128,10 +128,12 @@ public:
             }
             const shape_desc& shape = m_scene.shapes[hit->shape];
             const auto& tri = shape.mesh.triangles[hit->prim];
-            const glm::vec3 p = origin + hit->t * dir;
+            const glm::vec3 &v0 = shape.mesh.positions[tri[0]], &v1 = shape.mesh.positions[tri[1]],
+                            &v2 = shape.mesh.positions[tri[2]];
+            const surface_point sp = point_on_triangle(v0, v1, v2, hit->u, hit->v);  // with its error bound
+            const glm::vec3 p = sp.p;
             const glm::vec3 wo = -dir;
-            glm::vec3 ng = glm::cross(shape.mesh.positions[tri[1]] - shape.mesh.positions[tri[0]],
-                                      shape.mesh.positions[tri[2]] - shape.mesh.positions[tri[0]]);
+            glm::vec3 ng = glm::cross(v1 - v0, v2 - v0);
             const float ng_len = glm::length(ng);
             if (!(ng_len > 0.0f)) break;  // degenerate triangle
             ng /= ng_len;
@@ -177,7 +179,7 @@ public:
             if (!delta && !m_lights.empty()) {
                 const auto ls = m_lights.sample(rng.next(), rng.next2());
                 if (ls) {
-                    const glm::vec3 to_light = ls->point - p;
+                    const glm::vec3 to_light = ls->point.p - p;
                     const float d2 = glm::dot(to_light, to_light);
                     const float d = std::sqrt(d2);
                     const glm::vec3 wi = to_light / d;
@@ -199,8 +201,8 @@ public:
                         };
                         if (!f.is_zero() || bins_reflect()) {
                             ++out.rays;
-                            const glm::vec3 o2 = offset_ray_origin(p, ng, wi);
-                            if (!tracer.occluded(o2, wi, glm::length(ls->point - o2) * (1.0f - 1e-4f))) {
+                            const shadow_segment sh = shadow_ray_between(sp, ng, ls->point, ls->normal);
+                            if (!tracer.occluded(sh.origin, sh.direction, sh.t_max)) {
                                 const float pl = ls->pdf_area * d2 / std::fabs(cos_l);
                                 const sampled_spectrum<C> pb = bsdf_pdfs(mat, ng, wo, wi, wl);
                                 float denom = 0.0f;
@@ -253,7 +255,7 @@ public:
                     if (use_bins) tb /= survive;
                 }
             }
-            origin = offset_ray_origin(p, ng, bs->wi);
+            origin = offset_ray_origin(sp, ng, bs->wi);
             dir = bs->wi;
         }
 

@@ -13,12 +13,13 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "iris/render/frame.hpp"
 #include "iris/render/scene.hpp"
 
 namespace iris {
 
 struct light_sample {
-    glm::vec3 point;
+    surface_point point;   ///< the point and its floating-point error bound
     glm::vec3 normal;      ///< unit geometric normal of the emitting triangle
     std::uint32_t emitter;
     float pdf_area;        ///< density of this point per unit area
@@ -74,10 +75,10 @@ public:
         const std::size_t i = std::min(static_cast<std::size_t>(it - m_cdf.begin()), m_tris.size() - 1);
         const tri& t = m_tris[i];
         if (!(t.probability > 0.0f)) return std::nullopt;
-        // uniform point on a triangle (square-root parametrisation)
+        // uniform point on a triangle (square-root parametrisation): barycentrics of b and c
         const float su = std::sqrt(u.x);
-        const float b0 = 1.0f - su, b1 = u.y * su;
-        return light_sample{b0 * t.a + b1 * t.b + (1.0f - b0 - b1) * t.c, t.n, t.emitter, t.probability / t.area};
+        const float b1 = u.y * su, b2 = su - b1;  // b0 = 1 − √u.x
+        return light_sample{point_on_triangle(t.a, t.b, t.c, b1, b2), t.n, t.emitter, t.probability / t.area};
     }
 
     /// \brief Area density of sampling a point on triangle `prim` of shape `shape` (0 if not emissive).

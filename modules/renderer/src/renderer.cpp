@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include "iris/render/bsdf_only.hpp"
 #include "iris/render/camera.hpp"
 #include "iris/render/lights.hpp"
 #include "iris/sampling/presets.hpp"
@@ -43,6 +44,18 @@ void run(const scene_desc& scene, const embree_tracer& tracer, const options& op
                        f, st, h);
 }
 
+/// \brief The independent estimator: one instantiation, no wavelength policy (its loop's
+/// distribution is an empty placeholder).
+void run_bsdf_only(const scene_desc& scene, const embree_tracer& tracer, const options& opt, film& f, status& st,
+                   const hooks& h) {
+    struct no_distribution {};
+    static constexpr no_distribution none{};
+    const bsdf_only_integrator integ(scene, opt.path);
+    const camera_rays cam(scene.camera, f.width(), f.height());
+    detail::run_passes(integ, tracer, cam, opt,
+                       [&](int) { return std::pair<float, const no_distribution&>(1.0f, none); }, f, st, h);
+}
+
 /// \brief The instruction set a render runs with: `requested`, checked against this CPU.
 std::string choose_isa(const std::string& requested) {
     const auto available = instruction_sets();
@@ -64,6 +77,8 @@ void validate(const options& o) {
         throw std::invalid_argument(fmt::format("width and height must both be positive (or both 0 for the scene's), got {}x{}",
                                                 o.width, o.height));
     if (o.path.max_depth < 1) throw std::invalid_argument("max depth must be >= 1");
+    if (o.estimator != "nee-mis" && o.estimator != "bsdf-only")
+        throw std::invalid_argument(fmt::format("unknown estimator '{}' (expected nee-mis or bsdf-only)", o.estimator));
 }
 
 }  // namespace
@@ -78,12 +93,18 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     const embree_tracer tracer(scene);
     out = film(w, ht);
     status st;
-    st.config_name = config;
+    st.config_name = opt.estimator == "bsdf-only" ? std::string("bsdf-only") : config;
+    st.estimator = opt.estimator;
     st.width = w;
     st.height = ht;
     st.spp_total = opt.spp;
     st.dispersive_instantiation = opt.force_dispersive || scene.features().dispersive();
     st.isa = isa;
+    if (opt.estimator == "bsdf-only") {
+        st.dispersive_instantiation = false;  // one wavelength: nothing to track
+        run_bsdf_only(scene, tracer, opt, out, st, h);
+        return st;
+    }
     dispatch_preset(opt.preset, [&]<class Preset>() {
         if (st.dispersive_instantiation) run<Preset, true>(scene, tracer, opt, out, st, h);
         else run<Preset, false>(scene, tracer, opt, out, st, h);

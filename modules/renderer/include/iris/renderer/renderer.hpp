@@ -39,11 +39,16 @@ struct options {
     /// runs), or one of `instruction_sets()` ("baseline", "avx2", "avx512"). Every choice
     /// gives bit-identical images; only the speed differs (docs/performance.md).
     std::string isa = "auto";
+    /// \brief "nee-mis" (the preset's `path_integrator`: next-event estimation, MIS) or
+    /// "bsdf-only" (`bsdf_only_integrator`, iris/render/bsdf_only.hpp: pure BSDF sampling
+    /// at one uniform wavelength, the independent check; the preset is then not used).
+    std::string estimator = "nee-mis";
 };
 
 /// \brief Where a render is: passed to the hooks and returned at the end.
 struct status {
-    std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"
+    std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"; "bsdf-only" for that estimator
+    std::string estimator;         ///< "nee-mis" or "bsdf-only"
     bool dispersive_instantiation = false;
     std::string isa;               ///< instruction set the hot loop ran with
     int width = 0, height = 0;

@@ -1,0 +1,132 @@
+#pragma once
+/// \file
+/// \brief `bsdf_only_integrator`: the second, independent estimator of a pixel's XYZ, used
+/// to check `path_integrator` (tests/renderer/estimators_test.cpp) and available to users
+/// as `iris-render --estimator bsdf-only`.
+///
+/// Pure BSDF sampling at one wavelength: λ uniform on the scene's domain (pdf 1/Δ), a path
+/// that follows BSDF samples alone and adds the emission of every emitter it hits, front
+/// side (or either side if two-sided), with weight 1. No light sampling, no MIS, no hero
+/// rotation, no restriction or B term, no lattice tables: spectra are read from the scene's
+/// own tables. Per sample,
+///   XYZ = L(λ) · (x̄, ȳ, z̄)(λ) · Δ / ∫ȳ,   L(λ) = Σ_vertices β(λ) · Le(λ).
+/// It shares with `path_integrator` only what both must trust: the scene, the ray tracer
+/// and the BSDFs' sampling routine (guarded by the BSDF tests). Not even the ray offsets:
+/// its rays start on the surface and skip the triangle they leave (`intersect_leaving`). Everything next-event estimation adds —
+/// light choice, area pdfs, shadow rays, the two-strategy and C-wavelength MIS weights —
+/// is absent, so an error in any of it shows as a disagreement between the two estimators.
+/// It is unbiased for every scene, dispersive ones included (one wavelength, so a
+/// λ-dependent refraction needs no termination), but small lamps make it noisy.
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "iris/render/bsdf.hpp"
+#include "iris/render/frame.hpp"
+#include "iris/render/integrator.hpp"
+#include "iris/render/intersector.hpp"
+#include "iris/render/random.hpp"
+#include "iris/render/scene.hpp"
+#include "iris/spectrum/color.hpp"
+#include "iris/spectrum/sampled.hpp"
+
+namespace iris {
+
+class bsdf_only_integrator {
+public:
+    static constexpr std::size_t C = 1;
+
+    explicit bsdf_only_integrator(const scene_desc& scene, path_settings settings = {}) noexcept
+        : m_scene(scene), m_settings(settings) {}
+
+    /// \brief One path from `origin` along unit `dir`. The distribution and α of the
+    /// renderer's loop are ignored (this estimator has no wavelength policy).
+    template <Intersector Tracer, class Distribution>
+    path_sample trace(const Tracer& tracer, glm::vec3 origin, glm::vec3 dir, const Distribution& /*unused*/,
+                      float /*alpha*/, sample_stream& rng) const noexcept {
+        path_sample out;
+        const float width = m_scene.lambda_max - m_scene.lambda_min;
+        float lambda = m_scene.lambda_min + rng.next() * width;
+        if (!(lambda < m_scene.lambda_max)) lambda = m_scene.lambda_min;  // rounding up to λmax
+        const sampled_wavelengths<1> wl({lambda}, {1.0f / width});
+        float beta = 1.0f;
+        double radiance = 0.0;
+
+        std::uint32_t from_shape = no_triangle, from_prim = no_triangle;  // the triangle the ray leaves
+        for (int depth = 0;; ++depth) {
+            const auto hit = intersect_leaving(tracer, origin, dir, from_shape, from_prim, out.rays);
+            if (!hit) {
+                if (m_scene.environment) radiance += static_cast<double>(beta) * m_scene.environment->radiance(lambda);
+                break;
+            }
+            const shape_desc& shape = m_scene.shapes[hit->shape];
+            const auto& tri = shape.mesh.triangles[hit->prim];
+            const glm::vec3 &v0 = shape.mesh.positions[tri[0]], &v1 = shape.mesh.positions[tri[1]],
+                            &v2 = shape.mesh.positions[tri[2]];
+            glm::vec3 n = glm::cross(v1 - v0, v2 - v0);
+            const float len = glm::length(n);
+            if (!(len > 0.0f)) break;
+            n /= len;
+            const glm::vec3 wo = -dir;
+            if (shape.emitter) {
+                const emitter_desc& em = m_scene.emitters[*shape.emitter];
+                const float c = glm::dot(n, wo);
+                if (c > 0.0f || (em.two_sided && c < 0.0f))
+                    radiance += static_cast<double>(beta) * em.radiance(lambda);
+            }
+            if (depth >= m_settings.max_depth) break;
+            const material_desc& mat = m_scene.materials[shape.material];
+            const auto bs = bsdf_sample_hero(mat, n, wo, wl, rng.next(), rng.next2());
+            if (!bs || !(bs->pdf[0] > 0.0f)) break;
+            beta *= bs->f_cos[0] / bs->pdf[0];
+            if (!(beta > 0.0f)) break;
+            if (depth + 1 >= m_settings.rr_start_depth) {  // Russian roulette on β itself
+                const float survive = beta < 1.0f ? beta : 1.0f;
+                if (rng.next() >= survive) break;
+                beta /= survive;
+            }
+            origin = point_on_triangle(v0, v1, v2, hit->u, hit->v).p;  // not offset: see intersect_leaving
+            dir = bs->wi;
+            from_shape = hit->shape;
+            from_prim = hit->prim;
+        }
+        const double w = radiance * static_cast<double>(width) / cie::y_integral;
+        const double l = static_cast<double>(lambda);
+        out.value = {w * cie::x_bar(l), w * cie::y_bar(l), w * cie::z_bar(l)};
+        return out;
+    }
+
+private:
+    static constexpr std::uint32_t no_triangle = 0xffffffffu;
+
+    /// \brief The first hit along the ray other than the (flat) triangle it leaves. Rays
+    /// start on the surface itself, not offset from it: a ray leaving a plane cannot meet it
+    /// again, so any hit on that triangle is the start point re-found (at t ≈ 0, on either
+    /// side of the plane by rounding) and is stepped past. This shares nothing with the
+    /// offsets of `path_integrator` (iris/render/frame.hpp), and no surface is too close to
+    /// be seen: a cube 0.1 mm above a floor is hit from the floor.
+    template <Intersector Tracer>
+    static std::optional<ray_hit> intersect_leaving(const Tracer& tracer, glm::vec3 o, const glm::vec3& d,
+                                                    std::uint32_t shape, std::uint32_t prim, std::uint32_t& rays) noexcept {
+        for (int k = 0; k < 8; ++k) {
+            const auto h = tracer.intersect(o, d, std::numeric_limits<float>::infinity());
+            ++rays;
+            if (!h || h->shape != shape || h->prim != prim) return h;
+            o += h->t * d;
+            for (int i = 0; i < 3; ++i)  // and one float step on, along d
+                if (d[i] != 0.0f) o[i] = std::nextafter(o[i], d[i] > 0.0f ? std::numeric_limits<float>::infinity()
+                                                                         : -std::numeric_limits<float>::infinity());
+        }
+        return std::nullopt;
+    }
+
+    const scene_desc& m_scene;
+    path_settings m_settings;
+};
+
+}  // namespace iris
