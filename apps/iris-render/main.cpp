@@ -213,7 +213,8 @@ int run_render(const args& a) {
         return 130;
     }
     fmt::print("{}: {} with {} ({}), {}x{}, {} spp in {:.2f} s: {:.3f} Msamples/s, {:.2f} Mrays/s, {} NaN/Inf samples dropped{}\n",
-               a.out, scene.name, a.preset, st.config_name, st.width, st.height, st.spp_done, st.seconds,
+               a.out, scene.name, a.estimator == "bsdf-only" ? std::string("the bsdf-only estimator") : a.preset,
+               a.estimator == "bsdf-only" ? std::string("no preset") : st.config_name, st.width, st.height, st.spp_done, st.seconds,
                st.seconds > 0 ? static_cast<double>(st.samples) / st.seconds * 1e-6 : 0.0,
                st.seconds > 0 ? static_cast<double>(st.rays) / st.seconds * 1e-6 : 0.0, st.nan_inf,
                st.interrupted ? " (interrupted)" : "");
