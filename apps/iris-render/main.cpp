@@ -108,6 +108,7 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
                         {"width", st.width},
                         {"height", st.height},
                         {"threads", st.threads},
+                        {"threads_used", st.threads_used},
                         {"isa", st.isa},
                         {"seed", a.seed},
                         {"nthold", a.nthold},

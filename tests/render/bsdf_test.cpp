@@ -147,3 +147,61 @@ TEST(Bsdf, RoughDielectricPdfIntegratesToAtMostOneAndMatchesSampling) {
 }
 
 }  // namespace
+
+// Fresnel against closed forms, for the hero (fresnel_dielectric and what a sample reports)
+// and for the bins (delta_weight_given): at normal incidence R = ((n − 1)/(n + 1))² from
+// either side; at Brewster's angle R_p = 0, so the unpolarised R is R_s/2 =
+// ((n² − 1)/(n² + 1))²/2 from outside (tan θ = n) and from inside (tan θ = 1/n); past the
+// critical angle from inside (sin θ > 1/n) R = 1. A Fresnel scaled by 1.05 with T = 1 − R
+// still conserves energy; these values catch it.
+TEST(Bsdf, FresnelMatchesClosedFormsForTheHeroAndTheBins) {
+    constexpr std::size_t M = 3;
+    const sampled_wavelengths<M> wl({450.0f, 550.0f, 650.0f}, {1.0f, 1.0f, 1.0f});
+    for (double nd : {1.2, 1.33, 1.5168, 1.9, 2.4, 4.0}) {
+        const auto ni = static_cast<float>(nd);
+        const iris::material_desc glass = iris::material::dielectric{iris::constant_ior{nd}, 0.0f};
+        const double normal = std::pow((nd - 1.0) / (nd + 1.0), 2.0);
+        const double brewster = 0.5 * std::pow((nd * nd - 1.0) / (nd * nd + 1.0), 2.0);
+        struct incidence {
+            double cos_theta;  // signed: < 0 from inside
+            double r;
+            const char* what;
+        };
+        const double critical = std::asin(1.0 / nd);
+        const incidence cases[] = {
+            {1.0, normal, "normal, outside"},
+            {-1.0, normal, "normal, inside"},
+            {std::cos(std::atan(nd)), brewster, "Brewster, outside"},
+            {-std::cos(std::atan(1.0 / nd)), brewster, "Brewster, inside"},
+            {-std::cos(critical + 0.02), 1.0, "past the critical angle"},
+            {-std::cos(0.5 * (std::numbers::pi / 2 + critical)), 1.0, "far past the critical angle"},
+        };
+        for (const auto& c : cases) {
+            const auto co = static_cast<float>(c.cos_theta);
+            const double tol = 2e-5 * std::max(c.r, 1e-2);
+            EXPECT_NEAR(iris::detail::fresnel_dielectric(co, ni), c.r, tol) << c.what << ", n = " << nd;
+            const float s = std::sqrt(std::max(0.0f, 1.0f - co * co));
+            const glm::vec3 wo(s, 0.0f, co);
+            // the hero's sample: u_lobe = 0 always reflects, and reports F at every wavelength
+            const auto hs = iris::bsdf_sample_hero(glass, n, wo, wl, 0.0f, {0.5f, 0.5f});
+            ASSERT_TRUE(hs.has_value());
+            ASSERT_EQ(hs->kind, iris::lobe::reflection);
+            for (std::size_t k = 0; k < M; ++k) {
+                EXPECT_NEAR(hs->f_cos[k], c.r, tol) << c.what << ", n = " << nd << ", hero sample";
+                EXPECT_NEAR(hs->pdf[k], c.r, tol) << c.what << ", n = " << nd << ", hero sample pdf";
+            }
+            // the bins: reflection F, transmission (1 − F)/η′² (η′ the index seen from ωo's side)
+            const iris::sampled_spectrum<M> eta(ni);
+            const auto rb = iris::delta_weight_given<M>(
+                glass, n, wo, iris::lobe::reflection, [] { return iris::sampled_spectrum<M>(0.0f); }, [&] { return eta; });
+            const auto tb = iris::delta_weight_given<M>(
+                glass, n, wo, iris::lobe::transmission, [] { return iris::sampled_spectrum<M>(0.0f); }, [&] { return eta; });
+            const double et = c.cos_theta > 0.0 ? nd : 1.0 / nd;
+            for (std::size_t k = 0; k < M; ++k) {
+                EXPECT_NEAR(rb[k], c.r, tol) << c.what << ", n = " << nd << ", bins";
+                const double t = (1.0 - c.r) / (et * et);
+                EXPECT_NEAR(tb[k], t, 2e-5 * std::max(t, 1e-2)) << c.what << ", n = " << nd << ", bins T";
+            }
+        }
+    }
+}

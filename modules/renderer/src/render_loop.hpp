@@ -2,6 +2,7 @@
 // The progressive loop shared by every instantiation (internal to iris::renderer).
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -96,6 +97,7 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
     const int tiles_x = (w + ts - 1) / ts, tiles_y = (ht + ts - 1) / ts;
     const int tiles = tiles_x * tiles_y;
     std::vector<std::uint64_t> tile_rays(static_cast<std::size_t>(tiles));
+    std::atomic<std::uint64_t> used{0};  // arena slots that rendered a tile (slots ≥ 64 share bit 63)
     tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::info::default_concurrency());
     st.threads = arena.max_concurrency();
     using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
@@ -111,6 +113,8 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
         const std::uint64_t before = f.dropped();
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
+                const int slot = tbb::this_task_arena::current_thread_index();
+                used.fetch_or(std::uint64_t{1} << std::clamp(slot, 0, 63), std::memory_order_relaxed);
                 for (int t = r.begin(); t != r.end(); ++t) {
                     const int x0 = (t % tiles_x) * ts, y0 = (t / tiles_x) * ts;
                     const tile_job job{x0, y0, std::min(x0 + ts, w), std::min(y0 + ts, ht), w, opt.seed,
@@ -121,6 +125,8 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
         });
         for (auto r : tile_rays) st.rays += r;  // fixed reduction order
         st.spp_done = i + 1;
+        st.alpha = alpha;
+        st.threads_used = std::popcount(used.load(std::memory_order_relaxed));
         st.samples += static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(ht);
         st.nan_inf += f.dropped() - before;
         st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();

@@ -52,7 +52,9 @@ struct status {
     bool dispersive_instantiation = false;
     std::string isa;               ///< instruction set the hot loop ran with
     int width = 0, height = 0;
-    int threads = 0;               ///< worker threads actually used
+    int threads = 0;               ///< worker threads the render may use (its arena's size)
+    int threads_used = 0;          ///< of those, how many rendered at least one tile
+    float alpha = 1.0f;            ///< α of the last complete pass (sample index spp_done − 1)
     int spp_done = 0;              ///< complete passes (every pixel has this many samples)
     int spp_total = 0;
     double seconds = 0.0;          ///< wall-clock time spent in passes
