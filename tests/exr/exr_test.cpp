@@ -3,6 +3,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <iris/exr/exr.hpp>
 
 namespace fs = std::filesystem;
@@ -79,3 +83,65 @@ TEST_F(ExrTest, PngPreviewIsWritten) {
 }
 
 }  // namespace
+
+namespace {
+/// \brief A child process that rewrites `path` with `a` and `b` in turn, `count` times (or
+/// until killed); returns its pid.
+pid_t start_writer(const fs::path& path, const iris::image& a, const iris::image& b, int count) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        for (int i = 0; i < count; ++i) {
+            try {
+                iris::exr::write(path, i % 2 ? b : a, {{"iris:spp", std::to_string(i)}});
+            } catch (...) {
+                ::_exit(3);
+            }
+        }
+        ::_exit(0);
+    }
+    return pid;
+}
+}  // namespace
+
+// Files are written atomically (write a temporary, then rename): a reader polling the file
+// while it is rewritten always reads a whole image, one of the two being written, never a
+// truncated or mixed one; and a writer killed by SIGKILL at any moment leaves the last
+// complete image readable.
+TEST_F(ExrTest, AReaderNeverSeesAHalfWrittenImage) {
+    const auto a = ramp(256, 256);
+    auto b = a;
+    for (auto& p : b.pixels()) p.g += 1.0f;
+    const fs::path path = dir / "polled.exr";
+    iris::exr::write(path, a);
+    const pid_t writer = start_writer(path, a, b, 200);
+    ASSERT_GT(writer, 0);
+    int reads = 0, status = 0;
+    while (::waitpid(writer, &status, WNOHANG) == 0) {
+        iris::image got;
+        ASSERT_NO_THROW(got = iris::exr::read(path).pixels) << "read " << reads;
+        ASSERT_TRUE(got == a || got == b) << "read " << reads << " is neither image";
+        ++reads;
+    }
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    EXPECT_GT(reads, 10);
+}
+
+TEST_F(ExrTest, AWriterKilledMidWriteLeavesTheLastImageReadable) {
+    const auto a = ramp(512, 256);
+    auto b = a;
+    for (auto& p : b.pixels()) p.b += 1.0f;
+    const fs::path path = dir / "killed.exr";
+    iris::exr::write(path, a);
+    for (int k = 0; k < 20; ++k) {
+        const pid_t writer = start_writer(path, a, b, 1000000);
+        ASSERT_GT(writer, 0);
+        ::usleep(static_cast<useconds_t>(2000 + 1371 * k));  // somewhere in a write, a different place each time
+        ::kill(writer, SIGKILL);
+        int status = 0;
+        ::waitpid(writer, &status, 0);
+        ASSERT_TRUE(WIFSIGNALED(status));
+        iris::image got;
+        ASSERT_NO_THROW(got = iris::exr::read(path).pixels) << "kill " << k;
+        ASSERT_TRUE(got == a || got == b) << "kill " << k;
+    }
+}
