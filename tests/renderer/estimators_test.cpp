@@ -165,3 +165,24 @@ TEST(Estimators, IndexMatchedGlassIsInvisibleUnderASmallLamp) {
                         "n = 1.5 (control)"),
               z_max);
 }
+
+// Secondary wavelengths at a specular dispersive event: they must be terminated (SPEC §2),
+// so `hwss` (C = 4) and `hwss-c1` (the hero alone, nothing to terminate) estimate the same
+// image on the prism scene, whose screen is lit only through dispersive glass. Kept
+// secondaries would follow the hero's refracted direction and wash the spectrum out.
+// 21 regions × 3 channels at family-wise α = 0.001 (Šidák).
+TEST(Estimators, HeroWavelengthsAgreeWithTheHeroAloneOnThePrism) {
+    const auto s = iris::scene::builtin_scene("prism");
+    const double z_max = iris_test::sidak_z(0.001, (16 + 4 + 1) * 3);
+    const auto a = iris_test::grid_estimates(s, make("nee-mis", "hwss", 32, 32, 4096, 21), 4, 4);
+    const auto b = iris_test::grid_estimates(s, make("nee-mis", "hwss-c1", 32, 32, 8192, 22), 4, 4);
+    std::size_t tests = 0;
+    double z = max_abs_z(a, b, tests, "prism C4 vs C1");
+    const std::vector<std::vector<std::size_t>> quadrants = {{0, 1, 4, 5}, {2, 3, 6, 7}, {8, 9, 12, 13}, {10, 11, 14, 15}};
+    z = std::max(z, max_abs_z(merge(a, quadrants), merge(b, quadrants), tests, "prism C4 vs C1 quadrant"));
+    std::vector<std::size_t> all(16);
+    for (std::size_t i = 0; i < 16; ++i) all[i] = i;
+    z = std::max(z, max_abs_z(merge(a, {all}), merge(b, {all}), tests, "prism C4 vs C1 image"));
+    std::printf("prism, hwss vs hwss-c1: max |z| %.2f over %zu (threshold %.2f)\n", z, tests, z_max);
+    EXPECT_LE(z, z_max);
+}
