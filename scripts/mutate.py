@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""Mutation check: inject known bugs one at a time and confirm the test suite catches each.
+
+For every mutation below: apply its text replacements to the source, build the test
+targets it names (in build/release, which must be configured: README command 2), run the
+CTest entries matching its regex, restore the source, and print CAUGHT (some test failed)
+or SURVIVED (all passed). At the end the sources are as before and the targets are rebuilt.
+
+    python3 scripts/mutate.py            # every mutation (about 35 min on 2 cores)
+    python3 scripts/mutate.py film ab    # the mutations whose names contain 'film' or 'ab'
+
+A mutation whose text is not found is reported as STALE (the code moved: update its text).
+"""
+import pathlib
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+BUILD = ROOT / "build" / "release"
+
+# name, [(file, old, new), ...], [targets], ctest regex
+MUTATIONS = [
+    ("issue-18-shadow-ray-and-offsets",
+     [("include/iris/render/frame.hpp",
+       "    const glm::vec3 target = offset_ray_origin(q, nq, p.p - q.p);\n    return {o, target - o, 1.0f - 1e-4f};",
+       "    (void)nq;\n    return {o, glm::normalize(q.p - p.p), glm::length(q.p - o) * (1.0f - 1e-4f)};"),
+      ("include/iris/render/frame.hpp",
+       "    const float d = glm::dot(glm::abs(ng), sp.error);",
+       "    const float d = 1e-4f * (1.0f + std::fmax(std::fabs(sp.p.x), std::fmax(std::fabs(sp.p.y), std::fabs(sp.p.z))));")],
+     ["direct_light_test", "estimators_test", "ray_offset_test"], "DirectLight|Estimators|RayOffset"),
+    ("fixed-1e-4-ray-offset",
+     [("include/iris/render/frame.hpp",
+       "    const float d = glm::dot(glm::abs(ng), sp.error);",
+       "    const float d = 1e-4f * (1.0f + std::fmax(std::fabs(sp.p.x), std::fmax(std::fabs(sp.p.y), std::fabs(sp.p.z))));")],
+     ["ray_offset_test", "estimators_test"], "RayOffset|Estimators"),
+    ("no-floor-under-the-offset",
+     [("include/iris/render/frame.hpp",
+       "    const float floor = 32.0f * eps * std::fmax(m.x, std::fmax(m.y, m.z));",
+       "    const float floor = 0.0f * eps * std::fmax(m.x, std::fmax(m.y, m.z));")],
+     ["ray_offset_test", "renderer_core_test"], "RayOffset|RendererCore"),
+    ("light-point-barycentrics",
+     [("include/iris/render/lights.hpp", "const float b1 = u.y * su, b2 = su - b1;", "const float b1 = u.y * su, b2 = 1.0f - su - b1;")],
+     ["direct_light_test", "estimators_test"], "DirectLight|Estimators"),
+    ("hero-fresnel-x1.05",
+     [("include/iris/render/bsdf.hpp", "    return 0.5f * (r_parl * r_parl + r_perp * r_perp);",
+       "    return std::min(1.0f, 1.05f * 0.5f * (r_parl * r_parl + r_perp * r_perp));")],
+     ["render_test"], "Bsdf"),
+    ("secondaries-kept-at-dispersive-refraction",
+     [("include/iris/render/bsdf.hpp", "            if (dispersive && k > 0) continue;", "            (void)dispersive;")],
+     ["estimators_test"], "Estimators"),
+    ("scaled-pdf-without-Z",
+     [("include/iris/render/integrator.hpp", "const float z = scales_pdf ? dist.normalisation() : 1.0f;", "const float z = 1.0f;")],
+     ["renderer_core_test"], "RendererCore.WhiteFurnace"),
+    ("B-term-x1.05",
+     [("include/iris/render/integrator.hpp", "            v.y += dl * static_cast<double>(y);", "            v.y += 1.05 * dl * static_cast<double>(y);")],
+     ["renderer_core_test"], "RendererCore.WhiteFurnace"),
+    ("wavelength-pdf-1%-off",
+     [("include/iris/render/integrator.hpp", "(static_cast<double>(wl.pdf(j)) * z);", "(1.01 * static_cast<double>(wl.pdf(j)) * z);")],
+     ["renderer_core_test"], "RendererCore.WhiteFurnace"),
+    ("thread-keyed-random-stream",
+     [("modules/renderer/src/render_loop.hpp", "            sample_stream rng(job.seed, pixel, job.sample);",
+       "            sample_stream rng(job.seed + static_cast<std::uint64_t>(tbb::this_task_arena::current_thread_index()), pixel, job.sample);")],
+     ["renderer_core_test"], "RendererCore.Identical"),
+    ("relaxation-off-by-one",
+     [("modules/renderer/src/renderer.cpp", "cfg.alpha(static_cast<std::uint64_t>(i))", "cfg.alpha(static_cast<std::uint64_t>(i) + 1)")],
+     ["renderer_core_test"], "RendererCore.SampleI"),
+    ("film-without-nan-guard",
+     [("include/iris/render/film.hpp", "        if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {", "        if (true) {")],
+     ["film_guard_test"], "FilmGuard"),
+    ("non-atomic-image-write",
+     [("modules/exr/src/atomic_file.cpp", "    try {\n        write_to(tmp);", "    write_to(target);\n    return;\n    try {\n        write_to(tmp);")],
+     ["exr_test"], "ExrTest"),
+    ("bsdf-only-steps-only-to-the-self-hit",
+     [("include/iris/render/bsdf_only.hpp", "            o += std::fmax(h->t, 0.0f) * d + step * d;", "            o += std::fmax(h->t, 0.0f) * d;")],
+     ["estimators_test"], "Estimators.BsdfOnly"),
+]
+
+
+def run(cmd):
+    return subprocess.run(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+
+
+def main():
+    wanted = sys.argv[1:]
+    chosen = [m for m in MUTATIONS if not wanted or any(w in m[0] for w in wanted)]
+    results, touched = [], set()
+    for name, edits, targets, regex in chosen:
+        originals = {}
+        stale = False
+        for path, old, new in edits:
+            f = ROOT / path
+            text = originals.get(path, f.read_text())
+            originals.setdefault(path, text)
+            current = f.read_text()
+            if current.count(old) != 1:
+                stale = True
+                break
+            f.write_text(current.replace(old, new))
+        try:
+            if stale:
+                verdict = "STALE"
+            elif run(["cmake", "--build", str(BUILD), "--target", *targets]) != 0:
+                verdict = "CAUGHT (does not build)"
+            else:
+                verdict = "SURVIVED" if run(["ctest", "--test-dir", str(BUILD), "-R", regex]) == 0 else "CAUGHT"
+        finally:
+            for path, text in originals.items():
+                (ROOT / path).write_text(text)
+        touched.update(targets)
+        results.append((name, verdict, regex))
+        print(f"{verdict:24} {name}  (tests: {regex})", flush=True)
+    run(["cmake", "--build", str(BUILD), "--target", *sorted(touched)])  # the restored sources
+    survived = [r for r in results if r[1] in ("SURVIVED", "STALE")]
+    print(f"{len(results) - len(survived)} of {len(results)} caught")
+    return 1 if survived else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
