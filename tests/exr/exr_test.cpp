@@ -85,6 +85,13 @@ TEST_F(ExrTest, PngPreviewIsWritten) {
 }  // namespace
 
 namespace {
+/// \brief Two images of one size that differ everywhere: a ramp and the ramp + 1 in green.
+std::pair<iris::image, iris::image> two_images(int w, int h) {
+    auto a = ExrTest::ramp(w, h), b = a;
+    for (auto& p : b.pixels()) p.g += 1.0f;
+    return {a, b};
+}
+
 /// \brief A child process that rewrites `path` with `a` and `b` in turn, `count` times (or
 /// until killed); returns its pid.
 pid_t start_writer(const fs::path& path, const iris::image& a, const iris::image& b, int count) {
@@ -108,9 +115,7 @@ pid_t start_writer(const fs::path& path, const iris::image& a, const iris::image
 // truncated or mixed one; and a writer killed by SIGKILL at any moment leaves the last
 // complete image readable.
 TEST_F(ExrTest, AReaderNeverSeesAHalfWrittenImage) {
-    const auto a = ramp(256, 256);
-    auto b = a;
-    for (auto& p : b.pixels()) p.g += 1.0f;
+    const auto [a, b] = two_images(256, 256);
     const fs::path path = dir / "polled.exr";
     iris::exr::write(path, a);
     const pid_t writer = start_writer(path, a, b, 200);
@@ -127,9 +132,7 @@ TEST_F(ExrTest, AReaderNeverSeesAHalfWrittenImage) {
 }
 
 TEST_F(ExrTest, AWriterKilledMidWriteLeavesTheLastImageReadable) {
-    const auto a = ramp(512, 256);
-    auto b = a;
-    for (auto& p : b.pixels()) p.b += 1.0f;
+    const auto [a, b] = two_images(512, 256);
     const fs::path path = dir / "killed.exr";
     iris::exr::write(path, a);
     for (int k = 0; k < 20; ++k) {
