@@ -6,7 +6,7 @@ targets it names (in build/release, which must be configured: README command 2),
 CTest entries matching its regex, restore the source, and print CAUGHT (some test failed)
 or SURVIVED (all passed). At the end the sources are as before and the targets are rebuilt.
 
-    python3 scripts/mutate.py            # every mutation (about 35 min on 2 cores)
+    python3 scripts/mutate.py            # every mutation (about 50 min on 2 cores)
     python3 scripts/mutate.py film ab    # the mutations whose names contain 'film' or 'ab'
 
 A mutation whose text is not found is reported as STALE (the code moved: update its text).
@@ -73,6 +73,36 @@ MUTATIONS = [
     ("bsdf-only-steps-only-to-the-self-hit",
      [("include/iris/render/bsdf_only.hpp", "            o += std::fmax(h->t, 0.0f) * d + step * d;", "            o += std::fmax(h->t, 0.0f) * d;")],
      ["estimators_test"], "Estimators.BsdfOnly"),
+    # issue 17's further list: window placement, MIS after specular bounces, bin width, light pdf
+    ("window-indicator-5nm-off-its-sampling",
+     [("include/iris/sampling/restriction/multi_box.hpp",
+       "                if (lambda_nm >= w.lo && lambda_nm <= w.hi) return 1.0f;",
+       "                if (lambda_nm >= w.lo + 5.0f && lambda_nm <= w.hi + 5.0f) return 1.0f;")],
+     ["sampling_test", "sampling_statistical_test", "renderer_core_test"], "Laws|ChiSquare|SpectralEstimator|RendererCore.WhiteFurnace"),
+    ("mis-weight-on-emission-after-specular-bounce",
+     [("include/iris/render/integrator.hpp", "                    if (prev_delta) {", "                    if (false) {")],
+     ["estimators_test", "renderer_core_test"], "Estimators|RendererCore.WhiteFurnace"),
+    ("B-term-bins-5%-narrow",
+     [("include/iris/render/bins.hpp", "m_width((lambda_max - lambda_min) / static_cast<float>(Bins))",
+       "m_width(0.95f * (lambda_max - lambda_min) / static_cast<float>(Bins))")],
+     ["renderer_core_test", "render_test"], "RendererCore.WhiteFurnace|Bins"),
+    ("light-pdf-3%-high-in-nee",
+     [("include/iris/render/integrator.hpp", "                                const float pl = ls->pdf_area * d2 / std::fabs(cos_l);",
+       "                                const float pl = 1.03f * ls->pdf_area * d2 / std::fabs(cos_l);")],
+     ["direct_light_test"], "DirectLight"),
+    ("light-pdf-doubled-in-mis-of-emission-hits",
+     [("include/iris/render/integrator.hpp",
+       "                        const float pl = m_lights.pdf_area(hit->shape, hit->prim) * hit->t * hit->t / std::fabs(cos_l);",
+       "                        const float pl = 2.0f * m_lights.pdf_area(hit->shape, hit->prim) * hit->t * hit->t / std::fabs(cos_l);")],
+     ["direct_light_test"], "DirectLight"),
+    ("film-sums-in-float",
+     [("include/iris/render/film.hpp", "            m_sum[i].x += v.x;", "            m_sum[i].x = static_cast<float>(m_sum[i].x + v.x);")],
+     ["extreme_test"], "Extreme.AMillion"),
+    ("fixed-1e-4-ray-offset-at-extreme-scales",
+     [("include/iris/render/frame.hpp",
+       "    const float d = glm::dot(glm::abs(ng), sp.error);",
+       "    const float d = 1e-4f * (1.0f + std::fmax(std::fabs(sp.p.x), std::fmax(std::fabs(sp.p.y), std::fabs(sp.p.z))));")],
+     ["extreme_test"], "Extreme.SceneScaled"),
 ]
 
 

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <new>
 
 #include <fmt/core.h>
 
@@ -24,6 +25,9 @@ int run(CLI::App& app, int argc, char** argv) {
     } catch (const usage_error& e) {
         fmt::print(stderr, "{}: error: {}\n", app.get_name(), e.what());
         return exit_usage;
+    } catch (const std::bad_alloc&) {
+        fmt::print(stderr, "{}: error: out of memory (a buffer could not be allocated; try a smaller image)\n", app.get_name());
+        return exit_failure;
     } catch (const std::exception& e) {
         fmt::print(stderr, "{}: error: {}\n", app.get_name(), e.what());
         return exit_failure;

@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -71,6 +75,50 @@ TEST_F(ExrTest, ReadingGarbageOrMissingFilesIsAClearError) {
     } catch (const iris::exr::error& e) {
         EXPECT_NE(std::string(e.what()).find("junk.exr"), std::string::npos) << e.what();
     }
+}
+
+namespace {
+/// \brief The bytes of an EXR with its dataWindow attribute replaced by (x0, y0)–(x1, y1).
+std::string with_data_window(const fs::path& exr, std::int32_t x0, std::int32_t y0, std::int32_t x1, std::int32_t y1) {
+    std::ifstream in(exr, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string key("dataWindow\0box2i\0", 17);
+    const auto at = bytes.find(key);
+    EXPECT_NE(at, std::string::npos);
+    const std::int32_t box[4] = {x0, y0, x1, y1};
+    std::memcpy(bytes.data() + at + key.size() + 4, box, sizeof box);  // after the 4-byte size
+    return bytes;
+}
+}  // namespace
+
+// A corrupt header must not make iris allocate what it claims: data windows beyond the
+// documented limits (2e9 × 2e9; one whose width overflows a 32-bit int; an inverted one;
+// a side of 65 537) are refused with a message naming the file, before any pixel buffer
+// exists; read_memory reads what read reads.
+TEST_F(ExrTest, CorruptDataWindowsAreRefusedBeforeAllocating) {
+    const auto img = ramp(5, 3);
+    iris::exr::write(dir / "a.exr", img);
+    std::ifstream in(dir / "a.exr", std::ios::binary);
+    const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(iris::exr::read_memory(good, "a.exr").pixels, img);
+    const struct {
+        std::int32_t x0, y0, x1, y1;
+    } cases[] = {{0, 0, 2000000000, 2000000000}, {-2147483647, 0, 2147483647, 2}, {5, 5, 0, 0}, {0, 0, 65536, 0}};
+    for (const auto& c : cases) {
+        const std::string bytes = with_data_window(dir / "a.exr", c.x0, c.y0, c.x1, c.y1);
+        try {
+            iris::exr::read_memory(bytes, "corrupt.exr");
+            ADD_FAILURE() << "accepted a data window to " << c.x1 << ", " << c.y1;
+        } catch (const iris::exr::error& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("corrupt.exr"), std::string::npos) << what;
+            // OpenEXR refuses the first three itself ("Invalid data window"), iris the last
+            EXPECT_NE(what.find("data window"), std::string::npos) << what;
+        }
+    }
+    // the lowered limit of read_memory
+    EXPECT_THROW(iris::exr::read_memory(good, "a.exr", 14), iris::exr::error);
+    EXPECT_NO_THROW(iris::exr::read_memory(good, "a.exr", 15));
 }
 
 TEST_F(ExrTest, PngPreviewIsWritten) {

@@ -146,6 +146,11 @@ TEST_F(LoadMesh, BrokenPlyFilesAreNamedErrors) {
     std::string huge = binary;
     huge.replace(huge.find("element vertex 6"), 16, "element vertex 4000000000");
     expect_error("huge.ply", huge, "unexpected end of file in element 'vertex'");
+    // An element without properties but a huge count: nothing to read, so nothing would
+    // stop a loop over its instances (a minute for this count; found by fuzz_mesh_ply).
+    std::string empty = binary;
+    empty.replace(empty.find("element face"), 12, "element junk 444444444\nelement face");
+    expect_error("empty-element.ply", empty, "element 'junk' has 444444444 instances but no properties");
     // NaN bits in a binary float.
     std::string nan = binary;
     const float q = std::nanf("");

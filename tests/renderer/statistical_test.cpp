@@ -13,9 +13,13 @@
 #include <iris/renderer/renderer.hpp>
 #include <iris/scene/scene.hpp>
 
+#include "agreement.hpp"
+
 namespace {
 
 using iris::renderer::options;
+using iris_test::expect_agreement;
+using iris_test::render_options;
 
 /// \brief Per-pixel XYZ means of the samples with index in [from, to) (0-based), from
 /// two snapshots of the running mean: (m_to·to − m_from·from) / (to − from).
@@ -41,18 +45,6 @@ std::vector<iris::xyz> window_means(const iris::scene_desc& s, options o, int fr
     return out;
 }
 
-/// \brief Options for a w×h render of `preset` at `spp` with N_thold and seed.
-options render_options(const std::string& preset, int w, int h, int spp, int nthold, std::uint64_t seed) {
-    options o;
-    o.preset = preset;
-    o.width = w;
-    o.height = h;
-    o.spp = spp;
-    o.nthold = nthold;
-    o.seed = seed;
-    return o;
-}
-
 struct mean_se {
     double mean, se;
 };
@@ -68,10 +60,11 @@ mean_se y_over_pixels(const std::vector<iris::xyz>& px) {
 }
 
 // ---- U1: the white furnace, every preset ---------------------------------------------
-// 16×16 pixel means are independent with the same expectation (the radiance is Y = 5
+// 40×40 pixel means are independent with the same expectation (the radiance is Y = 5
 // everywhere), so their spread estimates the standard error of the grand mean. Family
 // of presets × 1 test at family-wise α = 0.01, Šidák: per test α = 1 − 0.99^(1/m);
-// with m ≤ 16 presets the two-sided normal quantile is ≤ 3.84 (256 pixels: normal is fine).
+// with m ≤ 16 presets the two-sided normal quantile is ≤ 3.84 (1600 pixels: normal is
+// fine), and a 2 % bias is detected with 90 % power where (3.84 + 1.28)·se ≤ 0.1.
 constexpr double z_furnace = 3.84;
 
 TEST(Statistical, FurnaceIsFiveForEveryPreset) {
@@ -81,9 +74,9 @@ TEST(Statistical, FurnaceIsFiveForEveryPreset) {
     for (const auto& p : presets) {
         options o;
         o.preset = p.name;
-        o.width = 16;
-        o.height = 16;
-        o.spp = 256;  // C = 1 needs it: at 64 spp its se is ≈ 0.07 (> the 0.05 power bound)
+        o.width = 40;
+        o.height = 40;
+        o.spp = 256;  // C = 1 needs it (its se is the largest)
         o.nthold = 64;
         o.seed = 11;
         o.path.max_depth = 200;  // 0.8^200: truncation far below the noise
@@ -91,7 +84,8 @@ TEST(Statistical, FurnaceIsFiveForEveryPreset) {
         const int from = p.unbiased_before_nthold ? 0 : o.nthold;
         const auto e = y_over_pixels(window_means(s, o, from));
         EXPECT_NEAR(e.mean, 5.0, z_furnace * e.se) << p.name << " (se " << e.se << ")";
-        EXPECT_LT(e.se, 0.05) << p.name << ": too few samples to see a 3 % error";
+        // power: a 2 % bias (0.1) is detected with 90 % probability
+        EXPECT_LE((z_furnace + 1.2816) * e.se, 0.1) << p.name << ": too few samples to detect a 2 % bias (se " << e.se << ")";
     }
 }
 
@@ -109,82 +103,13 @@ TEST(Statistical, FurnaceNegativeControlRestrictOnlyIsDimBeforeNthold) {
     EXPECT_GT(std::fabs(e.mean - 5.0), z_furnace * e.se);
 }
 
-// ---- U2 / U3: two presets agree -----------------------------------------------------
-// R = 16 seeds each; statistics: the mean X, Y, Z over the whole image and over its four
-// quadrants (15 tests). Welch t-test per statistic, Šidák-corrected to family-wise
-// α = 0.01: per-test α = 6.7e-4; with ≥ 15 degrees of freedom the two-sided t critical
-// value is ≤ 4.271 (computed from Student's t; 30 dof would give 3.9).
-constexpr double t_agree = 4.271;
-constexpr int seeds = 16, width = 24, height = 18;
-
-/// \brief Per-seed means of X, Y, Z over the image and its quadrants (15 statistics) of
-/// the samples [from, spp) of `preset`.
-std::array<std::vector<double>, 15> region_statistics(const iris::scene_desc& s, const std::string& preset, int spp,
-                                                      int nthold, int from, std::uint64_t seed_base) {
-    std::array<std::vector<double>, 15> stats;
-    for (int seed = 0; seed < seeds; ++seed) {
-        const auto px = window_means(
-            s, render_options(preset, width, height, spp, nthold, seed_base + static_cast<std::uint64_t>(seed)), from);
-        for (int region = 0; region < 5; ++region) {
-            std::array<double, 3> sum{};
-            int n = 0;
-            for (int y = 0; y < height; ++y)
-                for (int x = 0; x < width; ++x) {
-                    if (region > 0 &&
-                        ((x < width / 2) != ((region - 1) % 2 == 0) || (y < height / 2) != ((region - 1) / 2 == 0)))
-                        continue;
-                    const auto& p = px[static_cast<std::size_t>(y * width + x)];
-                    sum[0] += p.x, sum[1] += p.y, sum[2] += p.z;
-                    ++n;
-                }
-            for (std::size_t c = 0; c < 3; ++c) stats[static_cast<std::size_t>(region) * 3 + c].push_back(sum[c] / n);
-        }
-    }
-    return stats;
-}
-
-/// \brief Welch t of the difference of the means of two samples.
-double welch_t(const std::vector<double>& a, const std::vector<double>& b) {
-    auto ms = [](const std::vector<double>& v) {
-        double m = 0, s2 = 0;
-        for (double x : v) m += x;
-        m /= static_cast<double>(v.size());
-        for (double x : v) s2 += (x - m) * (x - m);
-        return std::pair{m, s2 / static_cast<double>(v.size() - 1)};
-    };
-    const auto [ma, va] = ms(a);
-    const auto [mb, vb] = ms(b);
-    return (ma - mb) / std::sqrt(va / static_cast<double>(a.size()) + vb / static_cast<double>(b.size()));
-}
-
-/// \brief `preset` over samples [from, spp) agrees with `hwss` over the same samples.
-void expect_agreement(const iris::scene_desc& s, const std::string& preset, int spp, int nthold, int from,
-                      const std::string& what) {
-    const auto a = region_statistics(s, "hwss", spp, nthold, from, 1);
-    const auto b = region_statistics(s, preset, spp, nthold, from, 1001);
-    for (std::size_t k = 0; k < 15; ++k)
-        EXPECT_LT(std::fabs(welch_t(a[k], b[k])), t_agree) << what << " statistic " << k;
-}
-
-// U2: after N_thold (samples [8, 24) with N_thold = 8, α = 1) paper is hwss.
+// ---- U2 / U3: two presets agree (agreement.hpp: statistics, confidence, power) ------
+// U2: after N_thold (samples [8, 264) with N_thold = 8, α = 1) paper is hwss.
 TEST(Statistical, U2PaperAgreesWithHwssAfterNtholdOnCornell) {
-    expect_agreement(iris::scene::builtin_scene("cornell"), "paper", 24, 8, 8, "cornell");
+    expect_agreement(iris::scene::builtin_scene("cornell"), "paper", 64, 48, 8 + 256, 8, 8, "cornell", 0.04);
 }
 TEST(Statistical, U2PaperAgreesWithHwssAfterNtholdOnFallingCubes) {
-    expect_agreement(iris::scene::builtin_scene("falling-cubes"), "paper", 24, 8, 8, "falling-cubes");
-}
-
-enum class glass { rough, non_dispersive };
-
-/// \brief falling-cubes with its glass made rough (GGX α = 0.3) or non-dispersive (n = n_d).
-iris::scene_desc falling_cubes_variant(glass g) {
-    auto s = iris::scene::builtin_scene("falling-cubes");
-    for (auto& m : s.materials)
-        if (auto* d = std::get_if<iris::material::dielectric>(&m)) {
-            if (g == glass::rough) d->roughness = 0.3f;
-            if (g == glass::non_dispersive) d->ior = iris::constant_ior{iris::refractive_index(d->ior, 587.5618)};
-        }
-    return s;
+    expect_agreement(iris::scene::builtin_scene("falling-cubes"), "paper", 64, 48, 8 + 256, 8, 8, "falling-cubes", 0.12);
 }
 
 // U1 with light sampling and a surface that is black inside the restriction: the floor
@@ -209,19 +134,33 @@ TEST(Statistical, U1PaperIsUnbiasedWhereTheHeroSeesABlackSurface) {
          "transform": [{"rotate": {"axis": [1, 0, 0], "degrees": 180}}, {"translate": [0, 1, 0]}]}
       ]})",
                                             "notched.json", {});
-    expect_agreement(s, "paper", 24, 160, 0, "notched floor");
+    expect_agreement(s, "paper", 64, 48, 240, 1600, 0, "notched floor");
 }
 
 // U3, first half: without specular dispersion the propagated term is exact, so paper is
 // unbiased at every iteration: samples [0, 24) with N_thold = 64 all have α < 0.4.
 TEST(Statistical, U3PaperIsUnbiasedBeforeNtholdWithoutSpecularDispersion) {
-    const auto rough = falling_cubes_variant(glass::rough);
+    const auto rough = iris_test::falling_cubes_variant(iris_test::glass::rough);
     ASSERT_FALSE(rough.features().dispersive_specular);
     ASSERT_TRUE(rough.features().dispersive_rough);
-    expect_agreement(rough, "paper", 24, 64, 0, "rough dispersive glass");
-    const auto plain = falling_cubes_variant(glass::non_dispersive);
+    expect_agreement(rough, "paper", 64, 48, 240, 640, 0, "rough dispersive glass", 0.03);
+    const auto plain = iris_test::falling_cubes_variant(iris_test::glass::non_dispersive);
     ASSERT_FALSE(plain.features().dispersive());
-    expect_agreement(plain, "paper", 24, 64, 0, "non-dispersive glass");
+    expect_agreement(plain, "paper", 64, 48, 240, 640, 0, "non-dispersive glass", 0.07);
+}
+
+/// \brief Welch t of the difference of the means of two samples.
+double welch_t(const std::vector<double>& a, const std::vector<double>& b) {
+    auto ms = [](const std::vector<double>& v) {
+        double m = 0, s2 = 0;
+        for (double x : v) m += x;
+        m /= static_cast<double>(v.size());
+        for (double x : v) s2 += (x - m) * (x - m);
+        return std::pair{m, s2 / static_cast<double>(v.size() - 1)};
+    };
+    const auto [ma, va] = ms(a);
+    const auto [mb, vb] = ms(b);
+    return (ma - mb) / std::sqrt(va / static_cast<double>(a.size()) + vb / static_cast<double>(b.size()));
 }
 
 // ---- U3, second half: specular dispersion --------------------------------------------

@@ -54,6 +54,16 @@ inline double chi2_sf(double x, double dof) { return gamma_q(0.5 * dof, 0.5 * x)
 /// \brief P(|Z| ≥ |z|) for a standard normal Z.
 inline double normal_two_sided(double z) { return std::erfc(std::fabs(z) / std::sqrt(2.0)); }
 
+/// \brief The z with P(|Z| > z) = p for a standard normal Z (bisection on erfc).
+inline double normal_quantile_two_sided(double p) {
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (normal_two_sided(mid) > p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 /// \brief Outcome of a chi-square goodness-of-fit test.
 struct chi2_result {
     double statistic = 0.0;

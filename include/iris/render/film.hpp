@@ -19,6 +19,9 @@ public:
         : m_width(width), m_height(height), m_sum(static_cast<std::size_t>(width) * static_cast<std::size_t>(height)),
           m_count(m_sum.size(), 0), m_dropped(m_sum.size(), 0) {}
 
+    /// \brief Memory per pixel: the XYZ sums (3 doubles) and two 32-bit counters.
+    static constexpr std::size_t bytes_per_pixel = sizeof(xyz) + 2 * sizeof(std::uint32_t);
+
     int width() const noexcept { return m_width; }
     int height() const noexcept { return m_height; }
 

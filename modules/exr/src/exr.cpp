@@ -3,12 +3,18 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include <Imath/half.h>
@@ -69,35 +75,82 @@ void write(const std::filesystem::path& path, const image& img, const metadata& 
     });
 }
 
+namespace {
+
+// An EXR held in memory, for `read_memory` (the fuzz target's way in).
+class memory_stream final : public Imf::IStream {
+public:
+    memory_stream(std::string_view bytes, const std::string& name) : Imf::IStream(name.c_str()), m_bytes(bytes) {}
+    bool read(char c[], int n) override {
+        if (n < 0 || static_cast<std::uint64_t>(n) > m_bytes.size() - m_pos)
+            throw std::runtime_error("early end of file");
+        std::memcpy(c, m_bytes.data() + m_pos, static_cast<std::size_t>(n));
+        m_pos += static_cast<std::uint64_t>(n);
+        return m_pos < m_bytes.size();
+    }
+    std::uint64_t tellg() override { return m_pos; }
+    void seekg(std::uint64_t pos) override { m_pos = std::min<std::uint64_t>(pos, m_bytes.size()); }
+
+private:
+    std::string_view m_bytes;
+    std::uint64_t m_pos = 0;
+};
+
+loaded read_file(Imf::InputFile& file, const std::string& name, std::int64_t pixel_limit = max_pixels) {
+    const Imath::Box2i dw = file.header().dataWindow();
+    // in 64 bits: a corrupt window can overflow int
+    const std::int64_t w = std::int64_t{dw.max.x} - dw.min.x + 1;
+    const std::int64_t h = std::int64_t{dw.max.y} - dw.min.y + 1;
+    if (w < 1 || h < 1 || w > max_side || h > max_side || w * h > std::min(pixel_limit, max_pixels))
+        throw error("EXR '" + name + "' has a data window of " + std::to_string(w) + "x" + std::to_string(h) +
+                    " pixels; iris reads images of 1 to " + std::to_string(max_side) + " pixels a side and at most " +
+                    std::to_string(std::min(pixel_limit, max_pixels)) + " pixels");
+    for (const char* c : channel_names)
+        if (file.header().channels().findChannel(c) == nullptr)
+            throw error("EXR '" + name + "' has no channel '" + c + "' (iris reads R, G, B)");
+    loaded out{image(static_cast<int>(w), static_cast<int>(h)), {}};
+    Imf::FrameBuffer fb;
+    auto* base = reinterpret_cast<char*>(out.pixels.pixels().data());
+    const std::ptrdiff_t xs = sizeof(rgb_pixel);
+    const std::ptrdiff_t ys = xs * static_cast<std::ptrdiff_t>(w);
+    // OpenEXR addresses slices by absolute data-window coordinates: shift the base
+    // (as an integer: the shifted pointer lies outside the buffer until OpenEXR adds back)
+    const std::ptrdiff_t origin = -static_cast<std::ptrdiff_t>(dw.min.x) * xs - static_cast<std::ptrdiff_t>(dw.min.y) * ys;
+    for (std::size_t c = 0; c < channel_names.size(); ++c)
+        fb.insert(channel_names[c],
+                  Imf::Slice(Imf::FLOAT,
+                             reinterpret_cast<char*>(reinterpret_cast<std::uintptr_t>(base) +
+                                                     static_cast<std::uintptr_t>(origin + static_cast<std::ptrdiff_t>(c * sizeof(float)))),
+                             static_cast<std::size_t>(xs), static_cast<std::size_t>(ys)));
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    for (auto it = file.header().begin(); it != file.header().end(); ++it)
+        if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out.meta[it.name()] = s->value();
+    return out;
+}
+
+}  // namespace
+
 loaded read(const std::filesystem::path& path) {
     try {
         Imf::InputFile file(path.c_str());
-        const Imath::Box2i dw = file.header().dataWindow();
-        const int w = dw.max.x - dw.min.x + 1;
-        const int h = dw.max.y - dw.min.y + 1;
-        for (const char* c : channel_names)
-            if (file.header().channels().findChannel(c) == nullptr)
-                throw error("EXR '" + path.string() + "' has no channel '" + c + "' (iris reads R, G, B)");
-        loaded out{image(w, h), {}};
-        Imf::FrameBuffer fb;
-        auto* base = reinterpret_cast<char*>(out.pixels.pixels().data());
-        const std::size_t xs = sizeof(rgb_pixel);
-        const std::size_t ys = xs * static_cast<std::size_t>(w);
-        // OpenEXR addresses slices by absolute data-window coordinates: shift the base.
-        const std::ptrdiff_t origin = -static_cast<std::ptrdiff_t>(dw.min.x) * static_cast<std::ptrdiff_t>(xs) -
-                                      static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(ys);
-        for (std::size_t c = 0; c < channel_names.size(); ++c)
-            fb.insert(channel_names[c], Imf::Slice(Imf::FLOAT, base + origin + static_cast<std::ptrdiff_t>(c * sizeof(float)), xs, ys));
-        file.setFrameBuffer(fb);
-        file.readPixels(dw.min.y, dw.max.y);
-        for (auto it = file.header().begin(); it != file.header().end(); ++it)
-            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
-                out.meta[it.name()] = s->value();
-        return out;
+        return read_file(file, path.string());
     } catch (const error&) {
         throw;
     } catch (const std::exception& e) {
         throw error("cannot read EXR '" + path.string() + "': " + e.what());
+    }
+}
+
+loaded read_memory(std::string_view bytes, const std::string& name, std::int64_t pixel_limit) {
+    try {
+        memory_stream stream(bytes, name);
+        Imf::InputFile file(stream);
+        return read_file(file, name, pixel_limit);
+    } catch (const error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw error("cannot read EXR '" + name + "': " + e.what());
     }
 }
 

@@ -2,6 +2,7 @@
 // once with and once without the dispersive path-pdf bookkeeping.
 #include "iris/renderer/renderer.hpp"
 
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -91,7 +92,13 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
     const embree_tracer tracer(scene);
-    out = film(w, ht);
+    try {
+        out = film(w, ht);
+    } catch (const std::bad_alloc&) {
+        const double bytes = static_cast<double>(w) * static_cast<double>(ht) * static_cast<double>(film::bytes_per_pixel);
+        throw std::runtime_error(fmt::format("not enough memory for a {}x{} film ({:.2f} GiB at {} bytes per pixel)", w, ht,
+                                             bytes / (1024.0 * 1024.0 * 1024.0), film::bytes_per_pixel));
+    }
     status st;
     st.config_name = opt.estimator == "bsdf-only" ? std::string("bsdf-only") : config;
     st.estimator = opt.estimator;

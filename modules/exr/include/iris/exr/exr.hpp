@@ -6,11 +6,13 @@
 /// target, so a reader (tev, a script, an interrupted render) never sees a half-written
 /// image. All OpenEXR/stb failures leave this module as `iris::exr::error`.
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "iris/image.hpp"
 
@@ -37,8 +39,20 @@ struct loaded {
     metadata meta;
 };
 
-/// \brief Read an EXR with R, G and B channels. Missing channels are an error, not zeros.
+/// \brief The largest images `read` accepts: a side of at most 65 536 pixels and at most
+/// 2^27 pixels (1.5 GiB of float RGB, e.g. 16 384 × 8 192). A corrupt header cannot make
+/// iris allocate more than that.
+inline constexpr std::int64_t max_side = 65536;
+inline constexpr std::int64_t max_pixels = std::int64_t{1} << 27;
+
+/// \brief Read an EXR with R, G and B channels. Missing channels are an error, not zeros;
+/// so is a data window outside the limits above. \throws error naming the file
 loaded read(const std::filesystem::path& path);
+
+/// \brief `read` for an EXR already in memory; `name` is used in error messages. A data
+/// window of more than `pixel_limit` pixels (≤ max_pixels) is refused like one beyond the
+/// limits (the fuzz target lowers it, so that it does not spend its time allocating).
+loaded read_memory(std::string_view bytes, const std::string& name, std::int64_t pixel_limit = max_pixels);
 
 /// \brief Write an 8-bit sRGB-encoded PNG preview of linear RGB, scaled by 2^exposure, atomically.
 void write_png(const std::filesystem::path& path, const image& img, double exposure = 0.0);

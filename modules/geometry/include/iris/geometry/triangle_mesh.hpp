@@ -14,6 +14,7 @@
 #include <array>
 #include <filesystem>
 #include <stdexcept>
+#include <string_view>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -95,5 +96,13 @@ triangle_mesh make_sphere(glm::vec3 centre, float radius, unsigned subdivisions)
 /// extension, parse failure (with the line for text formats), no triangles, non-finite
 /// coordinates, vertex indices out of range.
 triangle_mesh load_mesh(const std::filesystem::path& path);
+
+/// \brief The formats `load_mesh` reads.
+enum class mesh_format { obj, off, ply };
+
+/// \brief What `load_mesh` does after reading the file: parse `bytes` as `format`, with
+/// `name` in every error message. The fuzz targets call this.
+/// \throws error as `load_mesh` does (never another exception for any bytes).
+triangle_mesh parse_mesh(std::string_view bytes, mesh_format format, const std::filesystem::path& name);
 
 }  // namespace iris::geometry
