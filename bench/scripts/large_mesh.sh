@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Memory of a 10-million-triangle mesh, from the file to a rendered image:
-#   bash bench/scripts/large_mesh.sh [BUILD=build/release] [N=2237]
-# Writes an N × N vertex grid (2 (N − 1)² triangles: 10 004 072 for N = 2237) as a binary
+#   bash bench/scripts/large_mesh.sh [BUILD=build/release] [N=2238]
+# Writes an N × N vertex grid (2 (N − 1)² triangles: 10 008 338 for N = 2238) as a binary
 # little-endian PLY into build/large-mesh/, a scene with it as a diffuse floor under a
 # lamp, then reports wall time and peak resident memory (GNU time's "Maximum resident set
 # size") of `iris-scene info` (parse + load + checks) and of a 64×48, 1-spp `iris-render`
@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=${1:-build/release}
-n=${2:-2237}
+n=${2:-2238}
 dir=build/large-mesh
 mkdir -p "$dir"
 /usr/bin/python3 - "$dir/grid.ply" "$n" <<'PY'

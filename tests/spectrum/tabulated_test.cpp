@@ -38,6 +38,18 @@ TEST(Tabulated, UniformFastPathAgreesWithSearch) {
     for (double x = 301.0; x < 830.0; x += 0.37) EXPECT_NEAR(d65(x), searched(x), 1e-9) << x;
 }
 
+// Found by fuzzing (fuzz_tabulated_spectrum): a step so small that its inverse overflows
+// made the uniform path convert an infinite index (undefined behaviour, then values
+// outside the table's range); points 1e308 apart made the searching path divide inf by
+// inf. Both must interpolate like any table.
+TEST(Tabulated, ExtremeSpacingsStayInsideTheTablesValues) {
+    const iris::tabulated_spectrum tiny({0.0, 1e-310, 2e-310}, {1.0, 2.0, 3.0});
+    EXPECT_NEAR(tiny(1.5e-310), 2.5, 1e-6);
+    const iris::tabulated_spectrum wide({-1.7e308, 1.7e308}, {1.0, 3.0});
+    EXPECT_DOUBLE_EQ(wide(0.0), 2.0);
+    EXPECT_NEAR(wide(1e308), 1.0 + 2.0 * (2.7 / 3.4), 1e-12);
+}
+
 TEST(Tabulated, RejectsBadTables) {
     EXPECT_THROW(iris::tabulated_spectrum({400.0}, {1.0}), std::invalid_argument);
     EXPECT_THROW(iris::tabulated_spectrum({400.0, 500.0}, {1.0}), std::invalid_argument);

@@ -59,10 +59,17 @@ public:
         } else {
             i = static_cast<std::size_t>(std::upper_bound(m_lambda.begin(), m_lambda.end(), lambda_nm) -
                                          m_lambda.begin()) - 1;
-            t = (lambda_nm - m_lambda[i]) / (m_lambda[i + 1] - m_lambda[i]);
+            double num = lambda_nm - m_lambda[i], den = m_lambda[i + 1] - m_lambda[i];
+            if (!std::isfinite(den)) {  // points ~1e308 apart: the halves do not overflow (found by fuzzing)
+                num = 0.5 * lambda_nm - 0.5 * m_lambda[i];
+                den = 0.5 * m_lambda[i + 1] - 0.5 * m_lambda[i];
+            }
+            t = std::clamp(num / den, 0.0, 1.0);
         }
-        // (1 − t)·a + t·b never overflows for finite a, b (a + t·(b − a) can).
-        return (1.0 - t) * m_value[i] + t * m_value[i + 1];
+        // (1 − t)·a + t·b never overflows for finite a, b (a + t·(b − a) can); it can round
+        // one ulp beyond [a, b], so it is clamped there (found by fuzzing: a = b, 1 ulp above)
+        const double a = m_value[i], b = m_value[i + 1];
+        return std::clamp((1.0 - t) * a + t * b, std::min(a, b), std::max(a, b));
     }
 
     std::span<const double> wavelengths() const noexcept { return m_lambda; }
@@ -94,7 +101,9 @@ private:
         }
         m_step = (m_lambda.back() - m_lambda.front()) / static_cast<double>(m_lambda.size() - 1);
         m_inv_step = 1.0 / m_step;
-        m_uniform = true;
+        // a span beyond double range, or a step so small that its inverse overflows, takes the
+        // searching path (the uniform one would convert an infinite index: found by fuzzing)
+        m_uniform = std::isfinite(m_step) && std::isfinite(m_inv_step);
         for (std::size_t i = 1; i < m_lambda.size() && m_uniform; ++i)
             m_uniform = std::abs((m_lambda[i] - m_lambda[i - 1]) - m_step) <= 1e-9 * m_step;
     }
