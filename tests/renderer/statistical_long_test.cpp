@@ -1,6 +1,6 @@
 // U2 and U3 (first half) at the sizes that detect a 2 % bias of the image's Y with 90 %
 // power (agreement.hpp), too long for the default suite, above all under ASan (label `long`, 45 s in release on 2 cores):
-//   ctest --preset long -R agreement
+//   ctest --preset long -R StatisticalLong
 // The default suite runs the same comparisons smaller (statistical_test.cpp) and asserts
 // the power it has there.
 #include <gtest/gtest.h>
