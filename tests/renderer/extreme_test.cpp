@@ -217,7 +217,7 @@ iris::film render_config(const iris::scene_desc& scene, const options& opt, iris
     const iris::camera_rays cam(scene.camera, f.width(), f.height());
     st.isa = "baseline";
     std::optional<typename Config::distribution_type> dist;
-    iris::renderer::detail::run_passes(integ, tracer, cam, opt,
+    iris::renderer::detail::run_passes<iris::renderer::detail::isa::baseline>(integ, tracer, cam, opt,
                                        [&](int i) {
                                            const float a = cfg.alpha(static_cast<std::uint64_t>(i));
                                            dist.emplace(cfg.distribution(a));

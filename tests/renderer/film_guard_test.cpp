@@ -68,7 +68,7 @@ TEST(FilmGuard, NonFiniteSamplesAreDroppedCountedAndNeverReachTheImage) {
     iris::renderer::status st;
     st.isa = "baseline";
     static constexpr no_distribution none{};
-    iris::renderer::detail::run_passes(integ, no_tracer{}, cam, opt,
+    iris::renderer::detail::run_passes<iris::renderer::detail::isa::baseline>(integ, no_tracer{}, cam, opt,
                                        [&](int) { return std::pair<float, const no_distribution&>(1.0f, none); }, f, st, {});
     ASSERT_EQ(st.spp_done, opt.spp);
     // pixel 9: k of its 64 samples were NaN; its mean is (64 − k)/64 · (1, 2, 3)

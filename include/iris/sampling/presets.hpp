@@ -27,6 +27,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 #include "iris/sampling/integrator_config.hpp"
@@ -72,6 +73,32 @@ using hwss_visible =
 using presets = type_list<preset::hwss, preset::paper, preset::paper_fast, preset::paper_quadratic, preset::box_linear,
                           preset::gaussian_linear, preset::scaled_pdf, preset::restrict_only, preset::hwss_c1,
                           preset::hwss_c8, preset::hwss_visible>;
+
+namespace detail {
+template <std::size_t I, class List>
+struct type_at_impl;
+template <std::size_t I, class T, class... Rest>
+struct type_at_impl<I, type_list<T, Rest...>> : type_at_impl<I - 1, type_list<Rest...>> {};
+template <class T, class... Rest>
+struct type_at_impl<0, type_list<T, Rest...>> {
+    using type = T;
+};
+}  // namespace detail
+
+/// \brief The I-th preset of the list (`preset_at<0>` is `preset::hwss`): what the
+/// renderer's per-preset translation units instantiate.
+template <std::size_t I>
+using preset_at = typename detail::type_at_impl<I, presets>::type;
+
+/// \brief The index of preset P in the list.
+template <class P>
+constexpr std::size_t preset_index() noexcept {
+    return []<class... L>(type_list<L...>) {
+        std::size_t i = 0, found = sizeof...(L);
+        ((std::is_same_v<P, L> ? (found = i, ++i) : ++i), ...);
+        return found;
+    }(presets{});
+}
 
 namespace detail {
 template <class... P>

@@ -18,6 +18,7 @@
 #include "iris/render/film.hpp"
 #include "iris/render/random.hpp"
 #include "iris/renderer/renderer.hpp"
+#include "dispatch.hpp"
 
 namespace iris::renderer::detail {
 
@@ -75,21 +76,22 @@ template <class Integrator, class Tracer, class Distribution>
 }
 #endif
 
-/// \brief The tile function for an instruction set name (one of `instruction_sets()`).
-template <class Integrator, class Tracer, class Distribution>
-auto tile_function(const std::string& isa) {
+/// \brief The tile function of instruction set I (baseline where the build has no copies).
+template <isa I, class Integrator, class Tracer, class Distribution>
+constexpr auto tile_function() {
 #if IRIS_ISA_DISPATCH
-    if (isa == "avx512") return &tile_avx512<Integrator, Tracer, Distribution>;
-    if (isa == "avx2") return &tile_avx2<Integrator, Tracer, Distribution>;
-#endif
-    (void)isa;
+    if constexpr (I == isa::avx512) return &tile_avx512<Integrator, Tracer, Distribution>;
+    else if constexpr (I == isa::avx2) return &tile_avx2<Integrator, Tracer, Distribution>;
+    else return &tile_baseline<Integrator, Tracer, Distribution>;
+#else
     return &tile_baseline<Integrator, Tracer, Distribution>;
+#endif
 }
 
 /// \brief Run `opt.spp` passes. `make_distribution(i)` returns {α_i, distribution} for
-/// sample index i (built once per pass, shared read-only by all threads). `st.isa` names
-/// the instruction set of the hot loop.
-template <class Integrator, class Tracer, class DistributionFor>
+/// sample index i (built once per pass, shared read-only by all threads), with the hot
+/// loop compiled for instruction set I.
+template <isa I, class Integrator, class Tracer, class DistributionFor>
 void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays& cam, const options& opt,
                 DistributionFor&& distribution_for, film& f, status& st, const hooks& h) {
     const int w = f.width(), ht = f.height();
@@ -101,7 +103,7 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
     tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::info::default_concurrency());
     st.threads = arena.max_concurrency();
     using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
-    const auto tile = tile_function<Integrator, Tracer, distribution>(st.isa);
+    constexpr auto tile = tile_function<I, Integrator, Tracer, distribution>();
 
     for (int i = 0; i < opt.spp; ++i) {
         if (h.cancel && h.cancel->load()) {

@@ -1,7 +1,8 @@
-// The preset × feature dispatch: every preset of the type list is instantiated here,
-// once with and once without the dispersive path-pdf bookkeeping.
+// render(): options checked, then one function chosen from the dispatch table (find_render)
+// and run. The integrators themselves are compiled elsewhere (dispatch.hpp).
 #include "iris/renderer/renderer.hpp"
 
+#include <array>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -10,51 +11,53 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
-#include "iris/render/bsdf_only.hpp"
-#include "iris/render/camera.hpp"
-#include "iris/render/lights.hpp"
 #include "iris/sampling/presets.hpp"
 #include "iris/renderer/embree_tracer.hpp"
-#include "render_loop.hpp"
+#include "dispatch.hpp"
 
 namespace iris::renderer {
 namespace {
 
-template <class Preset, bool Dispersive>
-void run(const scene_desc& scene, const embree_tracer& tracer, const options& opt, film& f, status& st,
-         const hooks& h) {
-    typename Preset::parameters params;
-    params.n_thold = static_cast<std::uint32_t>(opt.nthold);
-    params.domain = {scene.lambda_min, scene.lambda_max};
-    const Preset cfg(params);
-    const light_sampler lights(scene);
-    const path_integrator<Preset, Dispersive> integ(scene, lights, opt.path);
-    const camera_rays cam(scene.camera, f.width(), f.height());
-    // α changes every pass until N_thold and then stays 1: build p_α only when it changes
-    float built_alpha = -1.0f;
-    std::optional<typename Preset::distribution_type> dist;
-    detail::run_passes(integ, tracer, cam, opt,
-                       [&](int i) {
-                           const float a = cfg.alpha(static_cast<std::uint64_t>(i));
-                           if (a != built_alpha) {
-                               dist.emplace(cfg.distribution(a));
-                               built_alpha = a;
-                           }
-                           return std::pair<float, const typename Preset::distribution_type&>(a, *dist);
-                       },
-                       f, st, h);
+static_assert(iris::presets::size == IRIS_PRESET_COUNT,
+              "the preset list changed: set IRIS_PRESET_COUNT in modules/renderer/CMakeLists.txt to its length, "
+              "so that every preset gets its translation unit");
+
+using detail::isa;
+using detail::render_fn;
+
+/// \brief I's copy where this build has one, else the baseline loop.
+constexpr isa compiled(isa i) noexcept { return IRIS_ISA_DISPATCH ? i : isa::baseline; }
+
+/// \brief A preset's functions, indexed [dispersive][instruction set].
+template <class P>
+constexpr std::array<std::array<render_fn, 3>, 2> functions_of() noexcept {
+    using detail::render_preset;
+    return {{{&render_preset<P, false, compiled(isa::baseline)>, &render_preset<P, false, compiled(isa::avx2)>,
+              &render_preset<P, false, compiled(isa::avx512)>},
+             {&render_preset<P, true, compiled(isa::baseline)>, &render_preset<P, true, compiled(isa::avx2)>,
+              &render_preset<P, true, compiled(isa::avx512)>}}};
 }
 
-/// \brief The independent estimator: one instantiation, no wavelength policy (its loop's
-/// distribution is an empty placeholder).
-void run_bsdf_only(const scene_desc& scene, const embree_tracer& tracer, const options& opt, film& f, status& st,
-                   const hooks& h) {
-    struct no_distribution {};
-    static constexpr no_distribution none{};
-    const bsdf_only_integrator integ(scene, opt.path);
-    const camera_rays cam(scene.camera, f.width(), f.height());
-    detail::run_passes(integ, tracer, cam, opt,
-                       [&](int) { return std::pair<float, const no_distribution&>(1.0f, none); }, f, st, h);
+/// \brief The dispatch table: every preset's functions, in preset-list order.
+constexpr auto preset_table = []<class... P>(type_list<P...>) {
+    return std::array<std::array<std::array<render_fn, 3>, 2>, sizeof...(P)>{functions_of<P>()...};
+}(iris::presets{});
+
+constexpr std::array<render_fn, 3> bsdf_only_table{&detail::render_bsdf_only<compiled(isa::baseline)>,
+                                                   &detail::render_bsdf_only<compiled(isa::avx2)>,
+                                                   &detail::render_bsdf_only<compiled(isa::avx512)>};
+
+/// \brief The one place where a render's runtime choices become a compiled function.
+/// \throws std::invalid_argument for an unknown preset.
+render_fn find_render(const std::string& estimator, const std::string& preset, bool dispersive, isa i) {
+    const auto column = static_cast<std::size_t>(i);
+    if (estimator == "bsdf-only") return bsdf_only_table[column];
+    const std::size_t index = dispatch_preset(preset, []<class P>() { return preset_index<P>(); });
+    return preset_table[index][dispersive ? 1 : 0][column];
+}
+
+isa isa_of(const std::string& name) noexcept {
+    return name == "avx512" ? isa::avx512 : name == "avx2" ? isa::avx2 : isa::baseline;
 }
 
 /// \brief The instruction set a render runs with: `requested`, checked against this CPU.
@@ -107,15 +110,9 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.spp_total = opt.spp;
     st.dispersive_instantiation = opt.force_dispersive || scene.features().dispersive();
     st.isa = isa;
-    if (opt.estimator == "bsdf-only") {
-        st.dispersive_instantiation = false;  // one wavelength: nothing to track
-        run_bsdf_only(scene, tracer, opt, out, st, h);
-        return st;
-    }
-    dispatch_preset(opt.preset, [&]<class Preset>() {
-        if (st.dispersive_instantiation) run<Preset, true>(scene, tracer, opt, out, st, h);
-        else run<Preset, false>(scene, tracer, opt, out, st, h);
-    });
+    if (opt.estimator == "bsdf-only") st.dispersive_instantiation = false;  // one wavelength: nothing to track
+    const render_fn fn = find_render(opt.estimator, opt.preset, st.dispersive_instantiation, isa_of(isa));
+    fn(detail::render_job{scene, tracer, opt, out, st, h});
     return st;
 }
 
