@@ -22,7 +22,7 @@
 #include <iris/render/film.hpp>
 #include <iris/render/integrator.hpp>
 #include <iris/render/lights.hpp>
-#include <iris/renderer/embree_tracer.hpp>
+#include <iris/embree/intersector.hpp>
 #include <iris/renderer/renderer.hpp>
 #include <iris/sampling/presets.hpp>
 #include <iris/scene/scene.hpp>
@@ -210,7 +210,7 @@ iris::film render_config(const iris::scene_desc& scene, const options& opt, iris
     params.n_thold = static_cast<std::uint32_t>(opt.nthold);
     params.domain = {scene.lambda_min, scene.lambda_max};
     const Config cfg(params);
-    const iris::renderer::embree_tracer tracer(scene);
+    const iris::embree::intersector tracer(scene);
     const iris::light_sampler lights(scene);
     const iris::path_integrator<Config, true> integ(scene, lights, opt.path);
     iris::film f(opt.width, opt.height);

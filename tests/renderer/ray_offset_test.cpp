@@ -9,7 +9,7 @@
 
 #include <iris/render/frame.hpp>
 #include <iris/render/random.hpp>
-#include <iris/renderer/embree_tracer.hpp>
+#include <iris/embree/intersector.hpp>
 #include <iris/scene/scene.hpp>
 
 namespace {
@@ -35,7 +35,7 @@ iris::surface_point on(const iris::scene_desc& s, std::uint32_t shape, float b1,
 
 TEST(RayOffset, RaysBetweenSurfacesATenthOfAMillimetreApartHitTheOther) {
     const auto s = two_planes(1e-4f);
-    const iris::renderer::embree_tracer tracer(s);
+    const iris::embree::intersector tracer(s);
     iris::counter_rng rng(3);
     for (int i = 0; i < 2000; ++i) {
         // a point of the floor under the small quad, going up at any angle; and back down
@@ -54,7 +54,7 @@ TEST(RayOffset, RaysBetweenSurfacesATenthOfAMillimetreApartHitTheOther) {
 TEST(RayOffset, RaysLeavingTheBuiltinScenesSurfacesNeverHitTheirOwnTriangle) {
     for (const auto& info : iris::scene::builtin_scenes()) {
         const auto s = iris::scene::builtin_scene(info.name);
-        const iris::renderer::embree_tracer tracer(s);
+        const iris::embree::intersector tracer(s);
         iris::counter_rng rng(9);
         int self = 0, tried = 0;
         for (std::uint32_t si = 0; si < s.shapes.size(); ++si)
@@ -91,7 +91,7 @@ TEST(RayOffset, AShadowRayToALampPointIsNotBlockedByTheLamp) {
                  {"type": "quad", "size": [0.2, 0.2], "material": "m", "emitter": "l",
                   "transform": [{"rotate": {"axis": [1, 0, 0], "degrees": 180}}, {"translate": [0, 0.3, 0]}]}]})",
                                             "lamp", ".");
-    const iris::renderer::embree_tracer tracer(s);
+    const iris::embree::intersector tracer(s);
     const auto& lamp = s.shapes[1].mesh;
     iris::counter_rng rng(4);
     for (int i = 0; i < 4000; ++i) {

@@ -15,7 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include <iris/geometry/mesh.hpp>
-#include <iris/scene/intersector.hpp>
+#include <iris/embree/intersector.hpp>
 #include <iris/scene/scene.hpp>
 #include <iris/spectrum/color.hpp>
 
@@ -178,7 +178,7 @@ TEST(BuiltinScenes, FurnaceIsAClosedInwardEmitterOfLuminanceOneAndAlbedoPointEig
     const auto& r = std::get<iris::material::diffuse>(s.materials[s.shapes[0].material]).reflectance;
     for (double l = 360.0; l <= 830.0; l += 10.0) EXPECT_DOUBLE_EQ(r(l), 0.8);
     // the camera is inside the box
-    const iris::scene::embree_intersector tracer(s);
+    const iris::embree::intersector tracer(s);
     for (const glm::vec3 d : {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
                               glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)})
         EXPECT_TRUE(tracer.intersect(s.camera.position, d, 1e3f)) << d.x << d.y << d.z;
@@ -200,7 +200,7 @@ TEST(BuiltinScenes, FallingCubesLedDiffersOnlyInItsSpd) {
 
 TEST(BuiltinScenes, PrismLampLightsThePrismThroughTheSlitAndNothingElse) {
     const auto s = iris::scene::builtin_scene("prism");
-    const iris::scene::embree_intersector tracer(s);
+    const iris::embree::intersector tracer(s);
     const auto lamp = shape_index(s, "lamp"), prism = shape_index(s, "prism"), screen = shape_index(s, "screen");
     const glm::vec3 lamp_c = centroid(s.shapes[lamp].mesh), screen_c = centroid(s.shapes[screen].mesh);
     // from the middle of the prism's entry face the lamp is in plain view, through the slit

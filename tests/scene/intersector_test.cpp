@@ -1,4 +1,4 @@
-// embree_intersector: shape index = position in scene_desc::shapes, t, barycentrics, and
+// iris::embree::intersector: shape index = position in scene_desc::shapes, t, barycentrics, and
 // the geometric normal's orientation (v1 − v0) × (v2 − v0).
 #include <gtest/gtest.h>
 
@@ -6,12 +6,12 @@
 
 #include <glm/geometric.hpp>
 
-#include <iris/scene/intersector.hpp>
+#include <iris/embree/intersector.hpp>
 #include <iris/scene/scene.hpp>
 
 namespace {
 
-using iris::scene::embree_intersector;
+using embree_intersector = iris::embree::intersector;
 
 static_assert(iris::Intersector<embree_intersector>);
 static_assert(!std::is_copy_constructible_v<embree_intersector>);

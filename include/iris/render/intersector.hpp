@@ -7,7 +7,8 @@
 ///       t in (0, t_max); `direction` need not be normalised, t is in its units);
 ///   `t.occluded(origin, direction, t_max)` → `bool` (any hit with t in (0, t_max)).
 /// `ray_hit::shape` indexes `scene_desc::shapes`; `prim` the shape's triangle.
-/// Models: `iris::scene::embree_intersector` (modules/scene, Embree 3).
+/// Model: `iris::embree::intersector` (modules/embree, Embree 3), the one ray tracer of
+/// iris; tests may define their own (e.g. one that never hits).
 /// Callers offset ray origins themselves (see `offset_ray_origin`).
 
 #include <concepts>

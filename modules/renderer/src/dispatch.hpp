@@ -10,7 +10,7 @@
 
 #include "iris/render/film.hpp"
 #include "iris/render/scene.hpp"
-#include "iris/renderer/embree_tracer.hpp"
+#include "iris/embree/intersector.hpp"
 #include "iris/renderer/renderer.hpp"
 
 namespace iris::renderer::detail {
@@ -21,7 +21,7 @@ enum class isa { baseline, avx2, avx512 };
 /// \brief What one render works on; the choices are made.
 struct render_job {
     const scene_desc& scene;
-    const embree_tracer& tracer;
+    const embree::intersector& tracer;
     const options& opt;
     film& out;
     status& st;

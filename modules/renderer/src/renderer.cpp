@@ -12,7 +12,7 @@
 #include <fmt/ranges.h>
 
 #include "iris/sampling/presets.hpp"
-#include "iris/renderer/embree_tracer.hpp"
+#include "iris/embree/intersector.hpp"
 #include "dispatch.hpp"
 
 namespace iris::renderer {
@@ -94,7 +94,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     const int w = opt.width > 0 ? opt.width : scene.camera.width;
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
-    const embree_tracer tracer(scene);
+    const embree::intersector tracer(scene);
     try {
         out = film(w, ht);
     } catch (const std::bad_alloc&) {
