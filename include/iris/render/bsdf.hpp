@@ -44,6 +44,10 @@ struct bsdf_sample {
     sampled_spectrum<N> pdf;    ///< p(ωi | ωo, λ_k) (solid angle), or a discrete probability
     lobe kind = lobe::diffuse;
     bool delta = false;
+    /// \brief η′ of a transmission: the hero's relative index from ωo's side to ωi's (1 for
+    /// every other lobe). `f_cos` carries the radiance scaling 1/η′² across the interface;
+    /// Russian roulette multiplies it back (`eta_scale` in the integrators), as pbrt-v4 does.
+    float eta = 1.0f;
 };
 
 namespace detail {
@@ -299,6 +303,7 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero_given(const material_desc& mat, c
         if (!t) return std::nullopt;  // unreachable: TIR means F = 1
         s.wi = t->wt;
         s.kind = lobe::transmission;
+        s.eta = co > 0.0f ? eta[0] : 1.0f / eta[0];
         for (std::size_t k = 0; k < N; ++k) {
             if (dispersive && k > 0) continue;  // λ-dependent direction: secondaries terminate
             const float e = co > 0.0f ? eta[k] : 1.0f / eta[k];
@@ -324,6 +329,7 @@ std::optional<bsdf_sample<N>> bsdf_sample_hero_given(const material_desc& mat, c
         if (!t || t->wt.z * lo.z >= 0.0f || t->wt.z == 0.0f) return std::nullopt;
         li = t->wt;
         s.kind = lobe::transmission;
+        s.eta = lo.z > 0.0f ? eta[0] : 1.0f / eta[0];
     }
     s.wi = fr.to_world(li);
     for (std::size_t k = 0; k < N; ++k) {

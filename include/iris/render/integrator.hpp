@@ -112,6 +112,10 @@ public:
 
         sampled_spectrum<C> beta(1.0f), rho(1.0f), rho_before(1.0f), lc;
         std::array<float, Bins> scratch, eta_scratch, eta2_scratch, inv_eta2_scratch;  // for spectra off the bins' lattice (binned_spectrum::at)
+        // Π η′² over the hero's transmissions: β carries 1/η′² per crossing (radiance is
+        // compressed entering glass), which says nothing about what the path will still
+        // carry out of it; roulette looks at β·eta_scale (pbrt-v4's etaScale)
+        float eta_scale = 1.0f;
         bool prev_delta = true;  // the camera ray: no light-sampling strategy competes
         float prev_pdf = 0.0f;
 
@@ -242,12 +246,15 @@ public:
             }
             prev_delta = bs->delta;
             prev_pdf = p0;
+            if (bs->kind == lobe::transmission) eta_scale *= bs->eta * bs->eta;
 
             // Russian roulette on the largest remaining weight (same for every λ: MIS ratios
-            // unchanged), the B term's counted as it is carried (bins in the windows are 0)
+            // unchanged), the B term's counted as it is carried (bins in the windows are 0),
+            // without the radiance scaling of the transmissions so far (η′², hero's)
             if (depth + 1 >= m_settings.rr_start_depth) {
                 float m = beta.max_value();
                 if (use_bins && tb_max > m) m = tb_max;
+                m *= eta_scale;
                 const float survive = m < 1.0f ? m : 1.0f;  // (NaN → 1, as fmin)
                 if (!(survive > 0.0f) || rng.next() >= survive) break;
                 if (survive < 1.0f) {  // x / 1 = x: skip the pass
