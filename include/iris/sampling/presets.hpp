@@ -2,7 +2,9 @@
 /// \file
 /// \brief The presets: one type list of named `integrator_config`s. It drives the name →
 /// instantiation registry (`dispatch_preset`), the typed tests and the templated
-/// benchmarks; adding a preset here adds it everywhere.
+/// benchmarks; adding a preset here adds it everywhere (the renderer compiles one
+/// translation unit per preset: raise `IRIS_PRESET_COUNT` in modules/renderer/CMakeLists.txt,
+/// which renderer.cpp's static_assert asks for).
 ///
 /// | CLI name | config name | what it is |
 /// |---|---|---|
