@@ -62,7 +62,7 @@ MUTATIONS = [
        "            sample_stream rng(job.seed + static_cast<std::uint64_t>(tbb::this_task_arena::current_thread_index()), pixel, job.sample);")],
      ["renderer_core_test"], "RendererCore.Identical"),
     ("relaxation-off-by-one",
-     [("modules/renderer/src/renderer.cpp", "cfg.alpha(static_cast<std::uint64_t>(i))", "cfg.alpha(static_cast<std::uint64_t>(i) + 1)")],
+     [("modules/renderer/src/instantiation.hpp", "cfg.alpha(static_cast<std::uint64_t>(i))", "cfg.alpha(static_cast<std::uint64_t>(i) + 1)")],
      ["renderer_core_test"], "RendererCore.SampleI"),
     ("film-without-nan-guard",
      [("include/iris/render/film.hpp", "        if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {", "        if (true) {")],

@@ -2,9 +2,9 @@
 /// \file
 /// \brief The presets: one type list of named `integrator_config`s. It drives the name →
 /// instantiation registry (`dispatch_preset`), the typed tests and the templated
-/// benchmarks; adding a preset here adds it everywhere (the renderer compiles one
-/// translation unit per preset: raise `IRIS_PRESET_COUNT` in modules/renderer/CMakeLists.txt,
-/// which renderer.cpp's static_assert asks for).
+/// benchmarks; adding a preset here adds it everywhere (the renderer spreads the presets'
+/// instantiations over several translation units: raise `IRIS_PRESET_COUNT` in
+/// modules/renderer/CMakeLists.txt, which renderer.cpp's static_assert asks for).
 ///
 /// | CLI name | config name | what it is |
 /// |---|---|---|
@@ -88,7 +88,7 @@ struct type_at_impl<0, type_list<T, Rest...>> {
 }  // namespace detail
 
 /// \brief The I-th preset of the list (`preset_at<0>` is `preset::hwss`): what the
-/// renderer's per-preset translation units instantiate.
+/// renderer's generated translation units (src/presets.cpp.in) instantiate.
 template <std::size_t I>
 using preset_at = typename detail::type_at_impl<I, presets>::type;
 

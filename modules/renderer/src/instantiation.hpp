@@ -1,6 +1,6 @@
 #pragma once
 // The definitions of the functions dispatch.hpp declares (internal to iris::renderer):
-// included by the translation units that instantiate them, one per preset.
+// included by the translation units that instantiate them (presets.cpp.in, bsdf_only.cpp).
 #include <cstdint>
 #include <optional>
 #include <utility>

@@ -56,8 +56,18 @@ inline std::uint64_t tile_body(const Integrator& integ, const Tracer& tracer, co
 // copy fuses a multiply and an add, no loop reassociates a sum (the B term's XYZ sums run
 // in lanes fixed by the code, path_integrator::trace), and division and square root are correctly
 // rounded at any width — so every copy computes bit-identical images.
+//
+// A build without the copies (IRIS_ISA_COPIES=OFF: the `asan` preset) does not flatten its
+// one loop: nothing needs compiling for another target, and under -g GCC 12 overruns its
+// variable-tracking limit on the flattened function and compiles it a second time without
+// (one preset under ASan: 109 s flattened, 47 s not; docs/performance.md).
+#if IRIS_ISA_DISPATCH
+#define IRIS_TILE_FLATTEN [[gnu::flatten]]
+#else
+#define IRIS_TILE_FLATTEN
+#endif
 template <class Integrator, class Tracer, class Distribution>
-[[gnu::flatten]] std::uint64_t tile_baseline(const Integrator& integ, const Tracer& tracer, const camera_rays& cam,
+IRIS_TILE_FLATTEN std::uint64_t tile_baseline(const Integrator& integ, const Tracer& tracer, const camera_rays& cam,
                                              const tile_job& job, const Distribution& dist, float alpha, film& f) {
     return tile_body(integ, tracer, cam, job, dist, alpha, f);
 }

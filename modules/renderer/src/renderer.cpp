@@ -20,7 +20,7 @@ namespace {
 
 static_assert(iris::presets::size == IRIS_PRESET_COUNT,
               "the preset list changed: set IRIS_PRESET_COUNT in modules/renderer/CMakeLists.txt to its length, "
-              "so that every preset gets its translation unit");
+              "so that every preset is instantiated");
 
 using detail::isa;
 using detail::render_fn;
