@@ -25,10 +25,21 @@ struct glass_tables {
     }
 };
 
+/// \brief η² and 1/η² of the glass at one sample's bins, as the integrator reads them.
+template <std::size_t B>
+struct table_spectra {
+    const glass_tables<B>& t;
+    iris::bin_position bp;
+    std::array<float, B>& s1;
+    std::array<float, B>& s2;
+    auto eta2() const { return t.eta2.at(bp, s1); }
+    auto inv_eta2() const { return t.inv_eta2.at(bp, s2); }
+};
+
 /// \brief `count` glass vertices at varying angles, sides, lobes and bin jitters.
 template <std::size_t B>
 inline float glass_vertices(const glass_tables<B>& t, int count) {
-    const iris::material_desc glass = iris::material::dielectric{iris::constant_ior{1.5}, 0.0f};
+    const iris::material::dielectric glass{iris::constant_ior{1.5}, 0.0f};
     iris::sampled_spectrum<B> tb(1.0f);
     std::array<float, B> s1, s2;
     float acc = 0.0f;
@@ -36,10 +47,9 @@ inline float glass_vertices(const glass_tables<B>& t, int count) {
         const float c = 0.05f + 0.9f * static_cast<float>(i & 1023) / 1024.0f;
         const glm::vec3 wo(std::sqrt(1.0f - c * c), 0.0f, (i & 1024) ? c : -c);
         const iris::bin_position bp = t.lattice.position(static_cast<float>(i & 255) / 256.0f);
-        const auto w = iris::delta_weight_given<B>(
-            glass, glm::vec3(0.0f, 0.0f, 1.0f), wo, (i & 2048) ? iris::lobe::reflection : iris::lobe::transmission,
-            [] { return iris::sampled_spectrum<B>(0.0f); }, [&] { return t.eta2.at(bp, s1); },
-            [&] { return t.inv_eta2.at(bp, s2); });
+        const table_spectra<B> spectra{t, bp, s1, s2};
+        const auto w = iris::smooth_dielectric{glass}.follow<B>(
+            glm::vec3(0.0f, 0.0f, 1.0f), wo, wo, (i & 2048) ? iris::lobe::reflection : iris::lobe::transmission, spectra);
         for (std::size_t b = 0; b < B; ++b) tb[b] *= w[b] * 1.5f;
         acc += tb[static_cast<std::size_t>(i) % B];
         if (!(tb[0] > 1e-20f && tb[0] < 1e20f)) tb = iris::sampled_spectrum<B>(1.0f);

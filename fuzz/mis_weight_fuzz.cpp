@@ -41,9 +41,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
 
     const float r = in.raw<float>(), z = in.raw<float>();
-    for (float f : {iris::bias::none::restricted_factor(r, p_alpha, z), iris::bias::scaled_pdf::restricted_factor(r, p_alpha, z),
+    for (double f : {iris::bias::none::restricted_factor(r, p_alpha, z), iris::bias::scaled_pdf::restricted_factor(r, p_alpha, z),
                     iris::bias::propagate_unused::restricted_factor(r, p_alpha, z)})
-        if (!(std::isfinite(f) && f >= 0.0f)) fail("bias factor negative or not finite");
+        if (!(std::isfinite(f) && f >= 0.0 && f <= 3.0e38)) fail("bias factor negative or not finite in float");
 
     iris::spectral_domain d{in.raw<float>(), in.raw<float>()};
     const iris::bias::bin_layout bins(d, in.raw<float>());

@@ -59,15 +59,19 @@ loaded load(const std::string& name_or_path) {
 }
 
 std::string material_summary(const iris::material_desc& m) {
-    if (std::holds_alternative<iris::material::diffuse>(m)) return "diffuse";
-    if (std::holds_alternative<iris::material::conductor>(m)) return "conductor";
-    const auto& d = std::get<iris::material::dielectric>(m);
-    const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"
-                        : std::holds_alternative<iris::cauchy_ior>(d.ior) ? "cauchy"
-                                                                           : "sellmeier";
-    return fmt::format("dielectric {} n(550)={:.4f}{}{}", model, iris::refractive_index(d.ior, 550.0),
-                       iris::is_dispersive(d.ior) ? " dispersive" : "",
-                       d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"));
+    struct summary {  // one call per alternative: a new material does not compile without its own
+        std::string operator()(const iris::material::diffuse&) const { return "diffuse"; }
+        std::string operator()(const iris::material::conductor&) const { return "conductor"; }
+        std::string operator()(const iris::material::dielectric& d) const {
+            const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"
+                                : std::holds_alternative<iris::cauchy_ior>(d.ior) ? "cauchy"
+                                                                                   : "sellmeier";
+            return fmt::format("dielectric {} n(550)={:.4f}{}{}", model, iris::refractive_index(d.ior, 550.0),
+                               iris::is_dispersive(d.ior) ? " dispersive" : "",
+                               d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"));
+        }
+    };
+    return std::visit(summary{}, m);
 }
 
 struct emitter_stats {

@@ -101,8 +101,8 @@ TEST(Bsdf, DeltaWeightAtTheBinsIsTheScalarFresnel) {
         const float s = std::sqrt(std::max(0.0f, 1.0f - co * co));
         const glm::vec3 wo(s, 0.0f, co);
         for (auto kind : {iris::lobe::reflection, iris::lobe::transmission}) {
-            const auto w = iris::delta_weight_given<M>(
-                glass, n, wo, kind, [] { return iris::sampled_spectrum<M>(0.0f); }, [&] { return eta; });
+            const auto w = iris::smooth_dielectric{std::get<iris::material::dielectric>(glass)}.follow<M>(
+                n, wo, wo, kind, iris::sampled_spectra<M>::with_eta(eta));
             for (std::size_t k = 0; k < M; ++k) {
                 const double f = fresnel_reference(co, etas[k]);
                 const double et = co > 0.0f ? etas[k] : 1.0 / etas[k];
@@ -149,7 +149,7 @@ TEST(Bsdf, RoughDielectricPdfIntegratesToAtMostOneAndMatchesSampling) {
 }  // namespace
 
 // Fresnel against closed forms, for the hero (fresnel_dielectric and what a sample reports)
-// and for the bins (delta_weight_given): at normal incidence R = ((n − 1)/(n + 1))² from
+// and for the bins (smooth_dielectric::follow): at normal incidence R = ((n − 1)/(n + 1))² from
 // either side; at Brewster's angle R_p = 0, so the unpolarised R is R_s/2 =
 // ((n² − 1)/(n² + 1))²/2 from outside (tan θ = n) and from inside (tan θ = 1/n); past the
 // critical angle from inside (sin θ > 1/n) R = 1. A Fresnel scaled by 1.05 with T = 1 − R
@@ -192,10 +192,10 @@ TEST(Bsdf, FresnelMatchesClosedFormsForTheHeroAndTheBins) {
             }
             // the bins: reflection F, transmission (1 − F)/η′² (η′ the index seen from ωo's side)
             const iris::sampled_spectrum<M> eta(ni);
-            const auto rb = iris::delta_weight_given<M>(
-                glass, n, wo, iris::lobe::reflection, [] { return iris::sampled_spectrum<M>(0.0f); }, [&] { return eta; });
-            const auto tb = iris::delta_weight_given<M>(
-                glass, n, wo, iris::lobe::transmission, [] { return iris::sampled_spectrum<M>(0.0f); }, [&] { return eta; });
+            const iris::smooth_dielectric bxdf{std::get<iris::material::dielectric>(glass)};
+            const auto spectra = iris::sampled_spectra<M>::with_eta(eta);
+            const auto rb = bxdf.follow<M>(n, wo, wo, iris::lobe::reflection, spectra);
+            const auto tb = bxdf.follow<M>(n, wo, wo, iris::lobe::transmission, spectra);
             const double et = c.cos_theta > 0.0 ? nd : 1.0 / nd;
             for (std::size_t k = 0; k < M; ++k) {
                 EXPECT_NEAR(rb[k], c.r, tol) << c.what << ", n = " << nd << ", bins";

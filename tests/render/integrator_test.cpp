@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include <iris/render/camera.hpp>
 #include <iris/render/integrator.hpp>
+#include <iris/sampling/bias.hpp>
 
 #include "test_scenes.hpp"
 
@@ -38,10 +40,9 @@ struct box_distribution {
 template <std::size_t C, bool Propagates = false>
 struct test_config {
     static constexpr std::size_t wavelength_count = C;
-    struct bias_type {
-        static constexpr bool propagates = Propagates;
-        static constexpr bool scales_pdf = false;
-    };
+    // a B term of one 400 nm bin (as before the policies were used here): these tests check the
+    // integrator's paths, not the bins' resolution
+    using bias_type = std::conditional_t<Propagates, iris::bias::propagate_coarse<1>, iris::bias::none>;
 };
 
 /// \brief Uniform on 380–780 nm, unrestricted.

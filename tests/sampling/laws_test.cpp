@@ -534,6 +534,40 @@ TEST(Hwss, MisWeight) {
     EXPECT_NEAR(sum, 1.0, 1e-6);
 }
 
+// The ratio form the path integrator renders with equals the pdf form above, for each
+// way a path can end: one strategy, a light-sampled last vertex, an emitter found by BSDF
+// sampling. Inputs span two decades each; float arithmetic of a 4-term sum: rel. 1e-5.
+TEST(Hwss, RatioFormIsThePdfForm) {
+    constexpr std::size_t C = 4;
+    counter_rng rng(11, 0);
+    const auto in = [&](float lo, float hi) { return lo + (hi - lo) * rng.next(); };
+    for (int trial = 0; trial < 2000; ++trial) {
+        sampled_spectrum<C> q, f, pb;  // path pdfs before the last vertex, path values, BSDF pdfs there
+        for (std::size_t k = 0; k < C; ++k) {
+            q[k] = in(0.1f, 10.0f);
+            f[k] = in(0.1f, 10.0f);
+            pb[k] = in(0.0f, 5.0f);
+        }
+        pb[0] = in(0.1f, 5.0f);  // the hero's pdf of its own direction is positive
+        const float pl = in(0.1f, 5.0f), p_alpha = in(0.001f, 0.01f);
+        const sampled_spectrum<C> rho = q / q[0], beta = f / q[0];
+        const auto expect_same = [&](double ratio_form, const sampled_spectrum<C>& path_pdfs, double value) {
+            const double pdf_form = value * static_cast<double>(hwss_mis_weight(p_alpha, path_pdfs)) * p_alpha;
+            EXPECT_NEAR(ratio_form, pdf_form, 1e-5 * pdf_form) << "trial " << trial;
+        };
+        for (std::size_t j = 0; j < C; ++j) {
+            expect_same(beta[j] / hwss_ratio_sum(rho), q, f[j]);
+            sampled_spectrum<C> p_light;  // both strategies could have made the light-sampled vertex
+            for (std::size_t k = 0; k < C; ++k) p_light[k] = q[k] * (pl + pb[k]);
+            expect_same(beta[j] / (pl * hwss_light_ratio_sum(rho, pb, pl)), p_light, f[j]);
+            // an emitter found by BSDF sampling: ratios after the scattering and before it
+            const sampled_spectrum<C> rho_after = rho * pb / pb[0], beta_after = beta / pb[0];
+            expect_same(beta_after[j] / hwss_emission_ratio_sum(rho_after, rho, pl, pb[0]), p_light, f[j]);
+        }
+        EXPECT_FLOAT_EQ(balance_heuristic(pl, pb[0]) + balance_heuristic(pb[0], pl), 1.0f);
+    }
+}
+
 // ---- configuration and presets ------------------------------------------------------------
 
 TEST(Config, AlphaDistributionAndBins) {

@@ -49,7 +49,7 @@ struct both_ways_bias {  // propagates *and* scales: would count the unsampled p
     static constexpr std::string_view name = "both";
     static constexpr bool propagates = true;
     static constexpr bool scales_pdf = true;
-    static float restricted_factor(float, float, float) { return 0.0f; }
+    static double restricted_factor(float, float, float) { return 0.0; }
 };
 struct float_pdf {  // density in float: the concept asks for double
     static constexpr std::string_view name = "f";

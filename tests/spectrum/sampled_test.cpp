@@ -34,17 +34,6 @@ TEST(SampledSpectrum, SafeDivAndFiniteness) {
     EXPECT_FALSE(bad.all_finite());
 }
 
-TEST(SampledWavelengths, TerminateSecondaryKeepsOnlyTheHero) {
-    iris::sampled_wavelengths<4> wl({400, 500, 600, 700}, {0.01f, 0.01f, 0.01f, 0.01f});
-    EXPECT_FALSE(wl.secondary_terminated());
-    wl.terminate_secondary();
-    EXPECT_TRUE(wl.secondary_terminated());
-    EXPECT_FLOAT_EQ(wl.pdf(0), 0.01f);
-    for (std::size_t i = 1; i < 4; ++i) EXPECT_EQ(wl.pdf(i), 0.0f);
-    iris::sampled_wavelengths<1> one({550}, {1.0f});
-    EXPECT_TRUE(one.secondary_terminated());  // nothing to terminate with C = 1
-}
-
 TEST(SampledWavelengths, SampleEvaluatesASpectrumAtEachWavelength) {
     const iris::tabulated_spectrum s({400.0, 700.0}, {0.0, 3.0});
     const iris::sampled_wavelengths<3> wl({400, 500, 700}, {1, 1, 1});
@@ -54,9 +43,8 @@ TEST(SampledWavelengths, SampleEvaluatesASpectrumAtEachWavelength) {
 TEST(SampledWavelengths, WideWidthsWork) {
     iris::sampled_spectrum<32> s(1.0f);
     EXPECT_FLOAT_EQ(s.sum(), 32.0f);
-    iris::sampled_wavelengths<32> wl;
-    wl.terminate_secondary();
-    EXPECT_TRUE(wl.secondary_terminated());
+    const iris::sampled_wavelengths<32> wl;
+    EXPECT_EQ(wl.pdf(31), 0.0f);
 }
 
 }  // namespace

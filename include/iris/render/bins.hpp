@@ -30,6 +30,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "iris/render/materials/materials.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/data/cie1931.hpp"
@@ -243,7 +244,7 @@ private:
 };
 
 /// \brief The spectra the hero wavelengths read at every vertex, as `lattice_spectrum`s:
-/// per material its reflectance (diffuse, conductor; none for dielectrics), per emitter its
+/// per material its reflectance (if its BxDF `reads_albedo`; none otherwise), per emitter its
 /// radiance, and the environment.
 struct hero_tables {
     std::vector<lattice_spectrum> albedo;
@@ -253,26 +254,26 @@ struct hero_tables {
     hero_tables() = default;
     explicit hero_tables(const scene_desc& scene) {
         const float lo = scene.lambda_min, hi = scene.lambda_max;
-        for (const material_desc& m : scene.materials) {
-            if (const auto* d = std::get_if<material::diffuse>(&m)) albedo.emplace_back(d->reflectance, lo, hi);
-            else if (const auto* c = std::get_if<material::conductor>(&m)) albedo.emplace_back(c->reflectance, lo, hi);
-            else albedo.emplace_back();
-        }
+        for (const material_desc& m : scene.materials)
+            visit_bxdf(m, [&](const auto& b) {
+                if constexpr (std::remove_cvref_t<decltype(b)>::reads_albedo) albedo.emplace_back(b.reflectance(), lo, hi);
+                else albedo.emplace_back();
+            });
         for (const emitter_desc& e : scene.emitters) emission.emplace_back(e.radiance, lo, hi);
         if (scene.environment) environment = lattice_spectrum(scene.environment->radiance, lo, hi);
     }
 };
 
 /// \brief Every spectrum the B term reads, made once per render: per material its
-/// reflectance (diffuse, conductor) or index of refraction (dielectric), per emitter its
+/// reflectance or its index of refraction (as its BxDF `reads_albedo` or `reads_eta`), per emitter its
 /// radiance, the environment, and the CIE 1931 matching functions (their 1 nm tables).
 template <std::size_t Bins>
 struct bin_tables {
     using spectrum = binned_spectrum<Bins>;
 
     bin_lattice<Bins> lattice;
-    std::vector<spectrum> albedo;  ///< per material; zero for dielectrics
-    std::vector<spectrum> eta;     ///< per material; zero unless a dielectric
+    std::vector<spectrum> albedo;  ///< per material; empty unless its BxDF reads_albedo
+    std::vector<spectrum> eta;     ///< per material; empty unless its BxDF reads_eta
     std::vector<spectrum> eta2;     ///< η², likewise (Fresnel at the bins reads η² and 1/η², no squaring or division)
     std::vector<spectrum> inv_eta2; ///< 1/η², likewise
     std::vector<spectrum> emission;
@@ -285,25 +286,22 @@ struct bin_tables {
           x_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::x_bar)),
           y_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::y_bar)),
           z_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::z_bar)) {
-        for (const material_desc& m : scene.materials) {
-            if (const auto* d = std::get_if<material::diffuse>(&m)) {
-                albedo.emplace_back(lattice, d->reflectance);
-                eta.emplace_back();
-                eta2.emplace_back();
-                inv_eta2.emplace_back();
-            } else if (const auto* c = std::get_if<material::conductor>(&m)) {
-                albedo.emplace_back(lattice, c->reflectance);
-                eta.emplace_back();
-                eta2.emplace_back();
-                inv_eta2.emplace_back();
-            } else {
-                const auto& g = std::get<material::dielectric>(m);
-                albedo.emplace_back();
-                eta.emplace_back(lattice, [&](double l) { return refractive_index(g.ior, l); });
-                eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(g.ior, l), 2.0); });
-                inv_eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(g.ior, l), -2.0); });
-            }
-        }
+        for (const material_desc& m : scene.materials)
+            visit_bxdf(m, [&](const auto& b) {
+                using B = std::remove_cvref_t<decltype(b)>;
+                if constexpr (B::reads_albedo) albedo.emplace_back(lattice, b.reflectance());
+                else albedo.emplace_back();
+                if constexpr (B::reads_eta) {
+                    const ior_model& ior = b.ior();
+                    eta.emplace_back(lattice, [&](double l) { return refractive_index(ior, l); });
+                    eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(ior, l), 2.0); });
+                    inv_eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(ior, l), -2.0); });
+                } else {
+                    eta.emplace_back();
+                    eta2.emplace_back();
+                    inv_eta2.emplace_back();
+                }
+            });
         for (const emitter_desc& e : scene.emitters) emission.emplace_back(lattice, e.radiance);
         if (scene.environment) environment = spectrum(lattice, scene.environment->radiance);
     }

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
 /// \brief `spectral_estimate`: one sample of F = F_R (+ B) for ∫Λ f(λ) dλ with a
-/// path-independent integrand (p(x̄ | λ) ≡ 1) — exactly the combination the integrator
-/// forms per path, with the path factors taken out, so that a policy's claims can be
+/// path-independent integrand (p(x̄ | λ) ≡ 1) — the combination the integrator forms per
+/// path, through the same functions (`restricted_factor`, `hwss_ratio_sum`), with the path
+/// factors taken out, so that a policy's claims can be
 /// tested at the spectral level (SPEC U1: E[F] = ∫ f for `propagate_unused` at every α).
 ///
 ///     F_R = Σ_j r_α(λ_j) f(λ_j) / (p_α(λ_j) · C)        (÷ Z_α for `scaled_pdf`)
@@ -12,9 +13,7 @@
 /// r_α f / p_α vanishes wherever p_α does; E[B] = ∫ (1 − r_α) f because λ_b is uniform in
 /// its bin. Their sum is ∫ f: r and 1 − r partition unity (SPEC §3's r(λ) factor).
 
-#include <array>
 #include <cstddef>
-#include <span>
 
 #include "iris/sampling/bias/bin_layout.hpp"
 #include "iris/sampling/bias/concept.hpp"
@@ -27,14 +26,13 @@ namespace iris {
 template <BiasPolicy Bias, std::size_t C, class Distribution, class F>
 double spectral_estimate(const Distribution& dist, const bias::bin_layout& bins, F&& f, float u, float u_jitter) {
     const auto wl = dist.template sample_wavelengths<C>(u);
-    std::array<float, C> path{};
-    path.fill(1.0f);  // p(x̄ | λ_k) = 1 for every k: no path
-    const double z = Bias::scales_pdf ? static_cast<double>(dist.normalisation()) : 1.0;
+    const sampled_spectrum<C> rho(1.0f);  // p(x̄ | λ_k) = 1 for every k: no path, every ratio 1
+    const float z = Bias::scales_pdf ? dist.normalisation() : 1.0f;
     double estimate = 0.0;
-    for (std::size_t j = 0; j < C; ++j) {
-        const double w = static_cast<double>(hwss_mis_weight(wl.pdf(j), std::span<const float>(path)));
+    for (std::size_t j = 0; j < C; ++j) {  // the path integrator's F_R, with β_j = f(λ_j)
+        const double w = Bias::restricted_factor(dist.restriction(wl[j]), wl.pdf(j), z);
         if (w == 0.0) continue;
-        estimate += static_cast<double>(dist.restriction(wl[j])) * f(wl[j]) * w / z;
+        estimate += w * f(wl[j]) / static_cast<double>(hwss_ratio_sum(rho));
     }
     if constexpr (Bias::propagates) {
         for (std::size_t b = 0; b < bins.count(); ++b) {

@@ -47,4 +47,46 @@ float hwss_mis_weight(float restricted_pdf_j, const sampled_spectrum<C>& path_pd
     return hwss_mis_weight(restricted_pdf_j, std::span<const float>(path_pdfs.values()));
 }
 
+/// \name The same weight in ratio form, as the path integrator tracks a path (pbrt-v4's form)
+/// With β_j = f(x̄, λ_j) / p(x̄ | λ₀) and ρ_k = p(x̄ | λ_k) / p(x̄ | λ₀) along the path so far,
+///     f(x̄, λ_j) · p_α(λ_j) · w_j = β_j / Σ_k ρ_k,
+/// so the integrator never forms a path pdf (it under- or overflows on long paths) and
+/// divides by `hwss_mis_weight`'s sum, over p(x̄ | λ₀). When two strategies can make the
+/// last vertex (BSDF sampling, with pdf p_b(λ_k), and light sampling, p_l, the same for
+/// every λ), each p(x̄ | λ_k) is the sum of both and so is each ratio. The division by
+/// p_α(λ_j) is the bias policy's `restricted_factor`. tests/sampling/laws_test.cpp checks
+/// these against `hwss_mis_weight`; they are what renders.
+/// @{
+
+/// \brief Σ_k ρ_k: one strategy made the last vertex (the camera ray, a delta bounce, the
+/// environment).
+template <std::size_t C>
+float hwss_ratio_sum(const sampled_spectrum<C>& rho) noexcept {
+    return rho.sum();
+}
+
+/// \brief Σ_k ρ_k (1 + p_b(λ_k) / p_l): the last vertex was light-sampled with solid-angle
+/// pdf p_l (the ratios of the path up to the vertex before it); the contribution is
+/// β_j f_j L_j / (p_l · this).
+template <std::size_t C>
+float hwss_light_ratio_sum(const sampled_spectrum<C>& rho, const sampled_spectrum<C>& pdf_bsdf, float pdf_light) noexcept {
+    float denom = 0.0f;
+    for (std::size_t k = 0; k < C; ++k) denom += rho[k] * (1.0f + pdf_bsdf[k] / pdf_light);
+    return denom;
+}
+
+/// \brief Σ_k ρ_k + (p_l / p_b(λ₀)) Σ_k ρ′_k: BSDF sampling (hero pdf p_b(λ₀)) found an
+/// emitter that light sampling reaches with pdf p_l; ρ are the ratios including the last
+/// scattering, ρ′ those before it.
+template <std::size_t C>
+float hwss_emission_ratio_sum(const sampled_spectrum<C>& rho, const sampled_spectrum<C>& rho_before, float pdf_light,
+                              float pdf_bsdf_hero) noexcept {
+    return rho.sum() + (pdf_light / pdf_bsdf_hero) * rho_before.sum();
+}
+
+/// \brief The balance heuristic of one wavelength between two strategies, p / (p + q): the
+/// hero's own weight, which the B term carries.
+inline float balance_heuristic(float p, float q) noexcept { return p / (p + q); }
+/// @}
+
 }  // namespace iris

@@ -126,19 +126,25 @@ inline double srgb_decode(double v) noexcept {
     return v >= 1.0 ? 1.0 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
+/// \brief v += w · (x̄, ȳ, z̄)(λ), in double: one wavelength's weighted radiance added to
+/// a sample's XYZ (before the division by ∫ȳ). The path integrator's F_R and
+/// `sampled_to_xyz` both add through it.
+constexpr void add_cmf(xyz& v, double w, float lambda) noexcept {
+    const double l = static_cast<double>(lambda);
+    v.x += w * cie::x_bar(l);
+    v.y += w * cie::y_bar(l);
+    v.z += w * cie::z_bar(l);
+}
+
 /// \brief Monte Carlo XYZ of one sample: Σ_j s_j·cmf(λ_j) / (pdf_j · N) / ∫ȳ, with
-/// zero-pdf wavelengths skipped. Plain HWSS averaging; the integrator applies its own
-/// MIS weights (SPEC §2) before it calls this with pdf = 1.
+/// zero-pdf wavelengths skipped: plain averaging over N wavelengths. (The path integrator
+/// weighs its C wavelengths by the HWSS MIS weight instead, and adds them through `add_cmf`.)
 template <std::size_t N>
 constexpr xyz sampled_to_xyz(const sampled_spectrum<N>& s, const sampled_wavelengths<N>& wl) noexcept {
     xyz r;
     for (std::size_t i = 0; i < N; ++i) {
         if (wl.pdf(i) == 0.0f) continue;
-        const double l = static_cast<double>(wl[i]);
-        const double v = static_cast<double>(s[i]) / static_cast<double>(wl.pdf(i));
-        r.x += v * cie::x_bar(l);
-        r.y += v * cie::y_bar(l);
-        r.z += v * cie::z_bar(l);
+        add_cmf(r, static_cast<double>(s[i]) / static_cast<double>(wl.pdf(i)), wl[i]);
     }
     const double k = 1.0 / (static_cast<double>(N) * cie::y_integral);
     return {r.x * k, r.y * k, r.z * k};

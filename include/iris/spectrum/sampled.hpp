@@ -90,9 +90,10 @@ private:
 
 /// \brief N wavelengths in nm with the density each was sampled with (1/nm).
 ///
-/// Index 0 is the hero wavelength: it alone chooses directions. A specular dispersive
-/// event calls `terminate_secondary()`, which zeroes the pdfs of the others so that
-/// their MIS weight (and contribution) vanishes, as pbrt-v4 does.
+/// Index 0 is the hero wavelength: it alone chooses directions. At a specular dispersive
+/// event the others do not die here (pbrt-v4 zeroes their wavelength pdfs): the BxDF
+/// gives them zero f and zero p(ωi | λ_k), so their MIS ratios and contributions vanish
+/// (iris/render/materials/smooth_dielectric.hpp, SPEC §2).
 template <std::size_t N>
     requires(N >= 1)
 class sampled_wavelengths {
@@ -111,16 +112,6 @@ public:
     constexpr float& pdf(std::size_t i) noexcept { return m_pdf[i]; }
     constexpr const std::array<float, N>& lambdas() const noexcept { return m_lambda; }
     constexpr sampled_spectrum<N> pdfs() const noexcept { return sampled_spectrum<N>(m_pdf); }
-
-    constexpr bool secondary_terminated() const noexcept {
-        for (std::size_t i = 1; i < N; ++i)
-            if (m_pdf[i] != 0.0f) return false;
-        return true;
-    }
-    constexpr void terminate_secondary() noexcept {
-        if (secondary_terminated()) return;
-        for (std::size_t i = 1; i < N; ++i) m_pdf[i] = 0.0f;
-    }
 
     friend constexpr bool operator==(const sampled_wavelengths&, const sampled_wavelengths&) = default;
 

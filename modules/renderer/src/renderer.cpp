@@ -2,6 +2,7 @@
 // and run. The integrators themselves are compiled elsewhere (dispatch.hpp).
 #include "iris/renderer/renderer.hpp"
 
+#include <algorithm>
 #include <array>
 #include <new>
 #include <stdexcept>
@@ -56,20 +57,22 @@ render_fn find_render(const std::string& estimator, const std::string& preset, b
     return preset_table[index][dispersive ? 1 : 0][column];
 }
 
-isa isa_of(const std::string& name) noexcept {
-    return name == "avx512" ? isa::avx512 : name == "avx2" ? isa::avx2 : isa::baseline;
-}
+/// \brief The instruction sets' names, in `isa`'s order.
+constexpr std::array<const char*, 3> isa_names{"baseline", "avx2", "avx512"};
 
-/// \brief The instruction set a render runs with: `requested`, checked against this CPU.
-std::string choose_isa(const std::string& requested) {
+/// \brief The instruction set a render runs with: `requested` ("auto": the best this CPU and
+/// build have), checked against this CPU.
+/// \throws std::invalid_argument for an unknown or unsupported one.
+isa choose_isa(const std::string& requested) {
     const auto available = instruction_sets();
-    if (requested == "auto") return available.back();
-    for (const auto& a : available)
-        if (a == requested) return a;
-    for (const char* known : {"baseline", "avx2", "avx512"})
-        if (requested == known)
+    const std::string& name = requested == "auto" ? available.back() : requested;
+    for (std::size_t i = 0; i < isa_names.size(); ++i) {
+        if (name != isa_names[i]) continue;
+        if (std::find(available.begin(), available.end(), name) == available.end())
             throw std::invalid_argument(fmt::format("instruction set '{}' is not supported by this CPU or build (available: auto, {})",
                                                     requested, fmt::join(available, ", ")));
+        return static_cast<isa>(i);
+    }
     throw std::invalid_argument(fmt::format("unknown instruction set '{}' (expected auto, baseline, avx2 or avx512)", requested));
 }
 
@@ -90,7 +93,7 @@ void validate(const options& o) {
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h) {
     validate(opt);
     const std::string config = config_name(opt.preset);  // throws for an unknown preset
-    const std::string isa = choose_isa(opt.isa);          // throws for an unknown or unsupported one
+    const isa chosen = choose_isa(opt.isa);
     const int w = opt.width > 0 ? opt.width : scene.camera.width;
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
@@ -109,9 +112,9 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.height = ht;
     st.spp_total = opt.spp;
     st.dispersive_instantiation = opt.force_dispersive || scene.features().dispersive();
-    st.isa = isa;
+    st.isa = isa_names[static_cast<std::size_t>(chosen)];
     if (opt.estimator == "bsdf-only") st.dispersive_instantiation = false;  // one wavelength: nothing to track
-    const render_fn fn = find_render(opt.estimator, opt.preset, st.dispersive_instantiation, isa_of(isa));
+    const render_fn fn = find_render(opt.estimator, opt.preset, st.dispersive_instantiation, chosen);
     fn(detail::render_job{scene, tracer, opt, out, st, h});
     return st;
 }

@@ -13,7 +13,9 @@
 /// - `B::scales_pdf`                    true: w_j is divided by Z_α (each λ_j weighed by the
 ///                                      base pdf instead of p_α);
 /// - `B::restricted_factor(r, p_α, Z)`  → w_j = r_α(λ_j) / p_α(λ_j), or / (p_α Z_α) when
-///                                      `scales_pdf`; 0 (never NaN/Inf) for p_α ≤ 0.
+///                                      `scales_pdf`, in double (the path integrator
+///                                      weighs each λ_j's radiance by it in double); 0
+///                                      (never NaN/Inf) for p_α ≤ 0.
 /// A policy never both propagates and scales (that would count the unsampled part twice).
 
 #include <concepts>
@@ -26,7 +28,7 @@ concept BiasPolicy = std::copyable<B> && requires(float r, float p, float z) {
     { B::name } -> std::convertible_to<std::string_view>;
     { B::propagates } -> std::convertible_to<bool>;
     { B::scales_pdf } -> std::convertible_to<bool>;
-    { B::restricted_factor(r, p, z) } -> std::same_as<float>;
+    { B::restricted_factor(r, p, z) } -> std::same_as<double>;
 } && !(B::propagates && B::scales_pdf);
 
 }  // namespace iris

@@ -15,11 +15,12 @@
 namespace iris::bias {
 
 namespace detail {
-/// \brief num / den, or 0 when den ≤ 0 or the quotient is not finite.
-inline float safe_ratio(double num, double den) noexcept {
-    if (!(den > 0.0)) return 0.0f;
+/// \brief num / den in double, or 0 when den ≤ 0 or the quotient is negative, NaN or past
+/// float's range.
+inline double safe_ratio(double num, double den) noexcept {
+    if (!(den > 0.0)) return 0.0;
     const double q = num / den;
-    return q >= 0.0 && q <= 3.0e38 ? static_cast<float>(q) : 0.0f;
+    return q >= 0.0 && q <= 3.0e38 ? q : 0.0;
 }
 }  // namespace detail
 
@@ -29,7 +30,7 @@ struct none {
     static constexpr std::string_view name = "none";
     static constexpr bool propagates = false;
     static constexpr bool scales_pdf = false;
-    static float restricted_factor(float r, float pdf, float /*z*/) noexcept {
+    static double restricted_factor(float r, float pdf, float /*z*/) noexcept {
         return detail::safe_ratio(static_cast<double>(r), static_cast<double>(pdf));
     }
 };
@@ -41,7 +42,7 @@ struct scaled_pdf {
     static constexpr std::string_view name = "scaled";
     static constexpr bool propagates = false;
     static constexpr bool scales_pdf = true;
-    static float restricted_factor(float r, float pdf, float z) noexcept {
+    static double restricted_factor(float r, float pdf, float z) noexcept {
         return detail::safe_ratio(static_cast<double>(r), static_cast<double>(pdf) * static_cast<double>(z));
     }
 };
@@ -57,7 +58,7 @@ struct propagate_unused {
     /// \brief Bins of the B term the integrator evaluates along the hero path (5 nm on
     /// 380–780 nm): what it costs per vertex is proportional to this.
     static constexpr std::size_t bins = 80;
-    static float restricted_factor(float r, float pdf, float /*z*/) noexcept {
+    static double restricted_factor(float r, float pdf, float /*z*/) noexcept {
         return detail::safe_ratio(static_cast<double>(r), static_cast<double>(pdf));
     }
 };

@@ -1,0 +1,82 @@
+#pragma once
+/// \file
+/// \brief The catalogue of materials: which BxDF (iris/render/materials/bxdf.hpp) renders
+/// each alternative of `material_desc`, and `visit_bxdf`, the one place a material's
+/// runtime type becomes a compile-time one.
+///
+/// | `material_desc` alternative | BxDF | header |
+/// |---|---|---|
+/// | `material::diffuse` | `lambertian` | lambertian.hpp |
+/// | `material::conductor` | `specular_conductor` | conductor.hpp |
+/// | `material::dielectric`, smooth or index 1 | `smooth_dielectric` | smooth_dielectric.hpp |
+/// | `material::dielectric`, GGX α ≥ `smooth_alpha` | `rough_dielectric` | rough_dielectric.hpp |
+///
+/// Adding a material: its data in render/scene.hpp (`material_desc` and the feature
+/// summary), its BxDF header here, its branch in `visit_bxdf` (which does not compile
+/// without it), its parser branch (modules/scene), its tests. Everything else — the
+/// integrator, the independent estimator, the hero and bin tables — reaches it through
+/// `visit_bxdf` and the BxDF's members.
+
+#include <cstddef>
+#include <type_traits>
+#include <variant>
+
+#include "iris/render/materials/bxdf.hpp"
+#include "iris/render/materials/conductor.hpp"
+#include "iris/render/materials/fresnel.hpp"
+#include "iris/render/materials/lambertian.hpp"
+#include "iris/render/materials/rough_dielectric.hpp"
+#include "iris/render/materials/smooth_dielectric.hpp"
+#include "iris/render/scene.hpp"
+#include "iris/spectrum/sampled.hpp"
+
+namespace iris {
+
+/// \brief Below this GGX α a rough dielectric is treated as smooth (numerically a delta).
+inline constexpr float smooth_alpha = 1e-3f;
+
+namespace detail {
+template <class>
+inline constexpr bool no_bxdf_for = false;
+
+/// \brief A dielectric behaves as a delta BSDF when it is (numerically) smooth, or when
+/// its index is exactly 1: an invisible interface, whose microfacet half vector is
+/// undefined (ωi = −ωo), so it passes light straight through like smooth glass of η = 1.
+inline bool effectively_smooth(const material::dielectric& d) noexcept {
+    if (d.roughness < smooth_alpha) return true;
+    const auto* c = std::get_if<constant_ior>(&d.ior);
+    return c && c->value == 1.0;
+}
+}  // namespace detail
+
+/// \brief `f(bxdf)` with the BxDF of material `m`; `f` must return the same type for every
+/// BxDF. A `material_desc` alternative without a branch here is a compile error.
+template <class F>
+decltype(auto) visit_bxdf(const material_desc& m, F&& f) {
+    return std::visit(
+        [&](const auto& data) -> decltype(auto) {
+            using D = std::remove_cvref_t<decltype(data)>;
+            if constexpr (std::is_same_v<D, material::diffuse>) return f(lambertian{data});
+            else if constexpr (std::is_same_v<D, material::conductor>) return f(specular_conductor{data});
+            else if constexpr (std::is_same_v<D, material::dielectric>) {
+                if (detail::effectively_smooth(data)) return f(smooth_dielectric{data});
+                return f(rough_dielectric{data});
+            } else static_assert(detail::no_bxdf_for<D>, "visit_bxdf: a material_desc alternative without a BxDF");
+        },
+        m);
+}
+
+/// \brief The spectra of BxDF `b` at wavelengths `wl`, from the scene's own tables and
+/// index models (the independent estimator and the tests read these; the integrator reads
+/// its lattice tables instead, iris/render/bins.hpp).
+template <std::size_t N, bxdf B>
+sampled_spectra<N> scene_spectra(const B& b, const sampled_wavelengths<N>& wl) noexcept {
+    if constexpr (B::reads_albedo) return sampled_spectra<N>::with_albedo(sample(b.reflectance(), wl));
+    else if constexpr (B::reads_eta) return sampled_spectra<N>::with_eta(detail::etas(b.ior(), wl));
+    else return {};
+}
+
+static_assert(separable_bxdf<lambertian> && bxdf<specular_conductor> && bxdf<smooth_dielectric> &&
+              bxdf<rough_dielectric>);
+
+}  // namespace iris

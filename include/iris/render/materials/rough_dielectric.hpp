@@ -1,0 +1,99 @@
+#pragma once
+/// \file
+/// \brief `rough_dielectric`: the BxDF of a `material::dielectric` with GGX roughness
+/// α ≥ `smooth_alpha` (Walter et al. 2007, pbrt-v4's formulation).
+
+#include <cstddef>
+#include <optional>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "iris/render/frame.hpp"
+#include "iris/render/materials/bxdf.hpp"
+#include "iris/render/materials/fresnel.hpp"
+#include "iris/render/materials/microfacet.hpp"
+#include "iris/render/scene.hpp"
+#include "iris/spectrum/sampled.hpp"
+
+namespace iris {
+
+/// \brief The hero samples a visible microfacet normal and reflects or refracts through it
+/// with probability F(λ₀); every wavelength keeps a finite p(ωi | λ_k) (rough events never
+/// terminate the secondaries, SPEC §2), and the bins follow with f·|cos|.
+struct rough_dielectric {
+    const material::dielectric& data;
+
+    static constexpr bool delta = false;
+    static constexpr bool reads_albedo = false;
+    static constexpr bool reads_eta = true;
+
+    const ior_model& ior() const noexcept { return data.ior; }
+    detail::ggx distribution() const noexcept { return {data.roughness}; }
+
+    template <std::size_t N, class S>
+    sampled_spectrum<N> f_cos(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        return each<N>(n, wo, wi, s, &detail::rough_value::f_cos);
+    }
+
+    template <std::size_t N, class S>
+    sampled_spectrum<N> pdf(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        return each<N>(n, wo, wi, s, &detail::rough_value::pdf);
+    }
+
+    template <std::size_t N, class S>
+    std::optional<bsdf_sample<N>> sample(const glm::vec3& n, const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/,
+                                         float u_lobe, glm::vec2 u, const S& s) const noexcept {
+        const auto& eta = s.eta();
+        const frame fr = frame::from_normal(n);
+        const glm::vec3 lo = fr.to_local(wo);
+        if (lo.z == 0.0f) return std::nullopt;
+        const detail::ggx m = distribution();
+        const glm::vec3 wm = m.sample_visible(lo, u);
+        const float f0 = detail::fresnel_dielectric(glm::dot(lo, wm), eta[0]);
+        bsdf_sample<N> out;
+        glm::vec3 li;
+        if (u_lobe < f0) {
+            li = reflect_about(lo, wm);
+            if (li.z * lo.z <= 0.0f) return std::nullopt;
+            out.kind = lobe::reflection;
+        } else {
+            const auto t = detail::refract(lo, wm, eta[0]);
+            if (!t || t->wt.z * lo.z >= 0.0f || t->wt.z == 0.0f) return std::nullopt;
+            li = t->wt;
+            out.kind = lobe::transmission;
+            out.eta = lo.z > 0.0f ? eta[0] : 1.0f / eta[0];
+        }
+        out.wi = fr.to_world(li);
+        for (std::size_t k = 0; k < N; ++k) {
+            const auto v = detail::rough_dielectric_value(m, lo, li, eta[k]);
+            out.f_cos[k] = v.f_cos;
+            out.pdf[k] = v.pdf;
+        }
+        if (!(out.pdf[0] > 0.0f)) return std::nullopt;
+        return out;
+    }
+
+    template <std::size_t M, class S>
+    sampled_spectrum<M> follow(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, lobe /*kind*/,
+                               const S& s) const noexcept {
+        return f_cos<M>(n, wo, wi, s);
+    }
+
+private:
+    /// One field of `rough_dielectric_value` at each of the N wavelengths.
+    template <std::size_t N, class S>
+    sampled_spectrum<N> each(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& s,
+                             float detail::rough_value::*field) const noexcept {
+        const frame fr = frame::from_normal(n);
+        const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
+        const detail::ggx m = distribution();
+        const auto& e = s.eta();
+        sampled_spectrum<N> out;
+        for (std::size_t k = 0; k < N; ++k) out[k] = detail::rough_dielectric_value(m, lo, li, e[k]).*field;
+        return out;
+    }
+};
+
+}  // namespace iris

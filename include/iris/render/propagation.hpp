@@ -1,0 +1,276 @@
+#pragma once
+/// \file
+/// \brief The B term of one path (SPEC §3), as one component: `propagation<Bins>` for the
+/// bias policies that propagate, `no_propagation` (every step a no-op the compiler drops)
+/// for the others. The path integrator calls its steps where the hero path makes them:
+///
+/// | step | when | what B does |
+/// |---|---|---|
+/// | `start(dist, u)` | first, while α < 1 | jitter the bins, throughput t_b = 1 − r_α(λ_b) |
+/// | `emission(e, w)`, `environment()` | the hero's ray finds light | L_b += t_b · Le(λ_b) · w |
+/// | `enter(bxdf, m)` | each vertex | read material m's spectra at the bins |
+/// | `prepare_light`, `receives_light`, `light` | next-event estimation | the bins' f·\|cos\| toward the light; L_b += t_b f_b Le_b · w/p_l |
+/// | `follow(bxdf, s)` | the hero samples the BSDF | t_b ← t_b · follow_b / p(ωi \| λ₀) |
+/// | `roulette_max`, `survive(q)` | Russian roulette | B's largest weight counts; t_b ← t_b / q |
+/// | `add_xyz(v)` | the path ends | v += Δλ Σ_b L_b cmf(λ_b) |
+///
+/// B = Σ_b (1 − r_α(λ_b)) f_h(x̄, λ_b) Δλ / p(x̄ | λ₀), λ_b = λmin + (b + u)Δλ with one
+/// jitter u per sample shared by all bins (each λ_b is uniform in its bin). Its spectra come
+/// from the lattice tables of iris/render/bins.hpp; every step is one pass over the bins
+/// with no temporary spectrum. Bins inside the windows start at 0 and stay 0, so the sum
+/// needs no weight at the end and roulette sees only what B carries.
+
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+#include <glm/vec3.hpp>
+
+#include "iris/render/bins.hpp"
+#include "iris/render/materials/bxdf.hpp"
+#include "iris/spectrum/color.hpp"
+#include "iris/spectrum/sampled.hpp"
+
+namespace iris {
+
+/// \brief The B term of a policy without one: it is never on, and every step is empty.
+struct no_propagation {
+    static constexpr bool on() noexcept { return false; }
+    template <class Distribution>
+    void start(const Distribution&, float) noexcept {}
+    void emission(std::uint32_t, float) noexcept {}
+    void environment() noexcept {}
+    template <class B>
+    void enter(const B&, std::uint32_t) noexcept {}
+    template <class B>
+    void prepare_light(const B&, const glm::vec3&, const glm::vec3&, const glm::vec3&) noexcept {}
+    template <class B>
+    static constexpr bool receives_light() noexcept {
+        return false;
+    }
+    template <class B>
+    void light(std::uint32_t, float, float) noexcept {}
+    template <class B, std::size_t C>
+    void follow(const B&, const glm::vec3&, const glm::vec3&, const bsdf_sample<C>&) noexcept {}
+    static constexpr float roulette_max(float m) noexcept { return m; }
+    void survive(float) noexcept {}
+    void add_xyz(xyz&) const noexcept {}
+};
+
+/// \brief The B term of one path over `Bins` bins, reading the tables of one render.
+template <std::size_t Bins>
+class propagation {
+public:
+    explicit propagation(const bin_tables<Bins>& tables) noexcept : m_t(tables) {}
+
+    /// \brief B is on: started, and some bin outside the windows.
+    bool on() const noexcept { return m_on; }
+
+    /// \brief Start with jitter u: t_b = 1 − r_α(λ_b). Off if every bin is inside the windows.
+    template <class Distribution>
+    void start(const Distribution& dist, float u) noexcept {
+        m_bp = m_t.lattice.position(u);
+        m_on = complement(dist, u, m_tb);
+        m_tb_max = 1.0f;
+    }
+
+    /// \brief The hero reached emitter e with its BSDF-sampling weight w.
+    void emission(std::uint32_t e, float w) noexcept {
+        if (m_on) add_light(m_t.emission[e].at(m_bp, m_scratch), w);
+    }
+    /// \brief The hero escaped to the environment (BSDF sampling is its only strategy).
+    void environment() noexcept {
+        if (m_on) add_light(m_t.environment.at(m_bp, m_scratch), 1.0f);
+    }
+
+    /// \brief A vertex of material m: its reflectance at the bins is read once, here (its
+    /// indices are read as the BxDF asks for them).
+    template <class B>
+    void enter(const B& /*bxdf*/, std::uint32_t m) noexcept {
+        m_material = m;
+        if constexpr (B::reads_albedo)
+            if (m_on) m_t.albedo[m].evaluate(m_bp, m_refl);
+    }
+
+    /// \brief Next-event estimation toward unit wi, before the shadow ray: the bins' value
+    /// f·|cos θi| (a separable BxDF: its reflectance times one number).
+    template <class B>
+    void prepare_light(const B& bxdf, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi) noexcept {
+        if (!m_on) return;
+        if constexpr (separable_bxdf<B>) m_cos = B::cos_factor(n, wo, wi);
+        else m_f = bxdf.template f_cos<Bins>(n, wo, wi, spectra());
+    }
+    /// \brief Would light from there reach B? A surface black at every hero wavelength
+    /// (say, inside the windows) may still reflect at the bins, and B must keep its
+    /// light-sampling share there (SPEC U1).
+    template <class B>
+    bool receives_light() const noexcept {
+        if constexpr (separable_bxdf<B>) return m_on && m_cos != 0.0f && !m_refl.is_zero();
+        else return m_on && !m_f.is_zero();
+    }
+    /// \brief The shadow ray is clear: L_b += t_b f_b Le_b · w/p_l (w the hero's light-sampling
+    /// weight, p_l the light's solid-angle pdf).
+    template <class B>
+    void light(std::uint32_t e, float w, float pl) noexcept {
+        if (!m_on) return;
+        const auto le = m_t.emission[e].at(m_bp, m_scratch);
+        if constexpr (separable_bxdf<B>) add_light(m_refl, le, m_cos * (w / pl));
+        else add_light(m_f, le, w / pl);
+    }
+
+    /// \brief The bins follow the hero's sampled direction and lobe.
+    template <class B, std::size_t C>
+    void follow(const B& bxdf, const glm::vec3& n, const glm::vec3& wo, const bsdf_sample<C>& s) noexcept {
+        if (!m_on) return;
+        const float inv_p0 = 1.0f / s.pdf[0];
+        if constexpr (separable_bxdf<B>) m_tb_max = scale(m_refl, B::cos_factor(n, wo, s.wi) * inv_p0);
+        else m_tb_max = scale(bxdf.template follow<Bins>(n, wo, s.wi, s.kind, spectra()), inv_p0);
+    }
+
+    /// \brief The larger of m and B's largest throughput (a NaN in B is ignored).
+    float roulette_max(float m) const noexcept { return m_on && m_tb_max > m ? m_tb_max : m; }
+    /// \brief The path survived roulette with probability q < 1.
+    void survive(float q) noexcept {
+        if (m_on) m_tb /= q;
+    }
+
+    /// \brief v += Δλ Σ_b L_b cmf(λ_b): one pass, three sums in 8 interleaved partial sums
+    /// each, in an order fixed here (so the same on every instruction set) that vectorises
+    /// (one chain of 80 dependent adds would be latency-bound). Not yet divided by ∫ȳ.
+    void add_xyz(xyz& v) const noexcept {
+        if (!m_on) return;
+        std::array<float, Bins> sx_, sy_, sz_;  // scratch, used only off the lattice
+        const auto xb = m_t.x_bar.at(m_bp, sx_), yb = m_t.y_bar.at(m_bp, sy_), zb = m_t.z_bar.at(m_bp, sz_);
+        constexpr std::size_t lanes = 8;
+        std::array<float, lanes> sx{}, sy{}, sz{};
+        const auto add = [&](std::size_t b, std::size_t l) {
+            const float w = m_lb[b];  // 1 − r_α(λ_b) is in the throughput already
+            sx[l] += w * xb[b];
+            sy[l] += w * yb[b];
+            sz[l] += w * zb[b];
+        };
+        std::size_t b0 = 0;
+        for (; b0 + lanes <= Bins; b0 += lanes)
+            for (std::size_t l = 0; l < lanes; ++l) add(b0 + l, l);
+        for (std::size_t l = 0; b0 + l < Bins; ++l) add(b0 + l, l);
+        float x = 0.0f, y = 0.0f, z = 0.0f;
+        for (std::size_t l = 0; l < lanes; ++l) {
+            x += sx[l];
+            y += sy[l];
+            z += sz[l];
+        }
+        const double dl = static_cast<double>(m_t.lattice.bin_width());
+        v.x += dl * static_cast<double>(x);
+        v.y += dl * static_cast<double>(y);
+        v.z += dl * static_cast<double>(z);
+    }
+
+private:
+    using view = typename binned_spectrum<Bins>::view;
+
+    /// \brief The current material's spectra at the bins, as a BxDF reads them (bxdf.hpp):
+    /// the reflectance read by `enter`, views of η, η², 1/η² on the lattice.
+    struct bin_spectra {
+        const propagation& p;
+        const sampled_spectrum<Bins>& albedo() const noexcept { return p.m_refl; }
+        view eta() const { return p.m_t.eta[p.m_material].at(p.m_bp, p.m_eta_scratch); }
+        view eta2() const { return p.m_t.eta2[p.m_material].at(p.m_bp, p.m_eta2_scratch); }
+        view inv_eta2() const { return p.m_t.inv_eta2[p.m_material].at(p.m_bp, p.m_inv_eta2_scratch); }
+    };
+    bin_spectra spectra() const noexcept { return {*this}; }
+
+    /// \brief L_b += t_b · e_b · s. (The loops take their arrays as restrict pointers: `e` may
+    /// view `m_scratch`, a member like L_b, and without them GCC versions the loop for
+    /// aliasing — measured 3 % of `paper`'s time.)
+    void add_light(const view& e, float s) noexcept { add_light(&m_lb[0], m_tb.values().data(), nullptr, e.lo, e.hi, e.s, e.t, s); }
+    /// \brief L_b += t_b · f_b · e_b · s.
+    void add_light(const sampled_spectrum<Bins>& f, const view& e, float s) noexcept {
+        add_light(&m_lb[0], m_tb.values().data(), f.values().data(), e.lo, e.hi, e.s, e.t, s);
+    }
+    /// \brief lb_b += tb_b (· f_b) · (es·lo_b + et·hi_b) · s, the blend of `view::operator[]`.
+    static void add_light(float* __restrict lb, const float* __restrict tb, const float* __restrict f,
+                          const float* __restrict lo, const float* __restrict hi, float es, float et, float s) noexcept {
+        if (f)
+            for (std::size_t b = 0; b < Bins; ++b) lb[b] += tb[b] * f[b] * (es * lo[b] + et * hi[b]) * s;
+        else
+            for (std::size_t b = 0; b < Bins; ++b) lb[b] += tb[b] * (es * lo[b] + et * hi[b]) * s;
+    }
+    /// \brief t_b ← t_b · f_b · s; returns the largest new t_b. The throughput is ≥ 0, and
+    /// for floats ≥ +0 the order of their bit patterns as int32 is their numeric order
+    /// (negative values, −0 and negative NaNs count as 0; a positive NaN wins and
+    /// `roulette_max` then ignores it): an integer maximum vectorises, a float one that
+    /// honours NaN does not. In 16 interleaved lanes (the order cannot change a maximum).
+    float scale(const sampled_spectrum<Bins>& f, float s) noexcept {
+        for (std::size_t b = 0; b < Bins; ++b) m_tb[b] *= f[b] * s;
+        constexpr std::size_t lanes = 16;
+        std::array<std::int32_t, lanes> m{};
+        const auto step = [&](std::size_t b, std::size_t l) {
+            const auto v = std::bit_cast<std::int32_t>(m_tb[b]);
+            m[l] = v > m[l] ? v : m[l];
+        };
+        std::size_t b0 = 0;
+        for (; b0 + lanes <= Bins; b0 += lanes)
+            for (std::size_t l = 0; l < lanes; ++l) step(b0 + l, l);
+        for (std::size_t l = 0; b0 + l < Bins; ++l) step(b0 + l, l);
+        std::int32_t out = 0;
+        for (auto v : m) out = v > out ? v : out;
+        return std::bit_cast<float>(out);
+    }
+
+    /// \brief out ← 1 − r_α(λ_b) at every bin of a sample with jitter u; false if that is 0
+    /// everywhere. For a 0/1 kernel (boxes) r_α is 1 exactly on its support, a few disjoint
+    /// intervals: each covers a run of bins [first, end), found by a division and moved onto
+    /// the exact test lo ≤ λ_b ≤ hi (the one a kernel call would make), then zeroed in one
+    /// branch-free pass. Other kernels are evaluated bin by bin.
+    template <class Distribution>
+    bool complement(const Distribution& dist, float u, sampled_spectrum<Bins>& out) const noexcept {
+        const auto& lat = m_t.lattice;
+        if constexpr (requires { dist.bound_kernel().support(); } &&
+                      requires { requires std::remove_cvref_t<decltype(dist.bound_kernel())>::indicator; }) {
+            out = sampled_spectrum<Bins>(1.0f);
+            const auto lambda = [&](int b) { return lat.lambda(static_cast<std::size_t>(b), u); };  // non-decreasing
+            constexpr int n = static_cast<int>(Bins);
+            int covered = 0;
+            for (const auto& s : dist.bound_kernel().support()) {
+                const auto estimate = [&](float edge) {
+                    const float x = (edge - lat.lambda_min()) / lat.bin_width() - u;
+                    return x <= 0.0f ? 0 : (x >= static_cast<float>(n) ? n : static_cast<int>(x));
+                };
+                int first = estimate(s.lo), end = estimate(s.hi);
+                while (first > 0 && lambda(first - 1) >= s.lo) --first;
+                while (first < n && lambda(first) < s.lo) ++first;
+                while (end > 0 && lambda(end - 1) > s.hi) --end;
+                while (end < n && lambda(end) <= s.hi) ++end;
+                if (end <= first) continue;
+                covered += end - first;
+                const auto width = static_cast<unsigned>(end - first);
+                for (int b = 0; b < n; ++b)  // b ∈ [first, end) as one unsigned comparison
+                    out[static_cast<std::size_t>(b)] =
+                        static_cast<unsigned>(b - first) < width ? 0.0f : out[static_cast<std::size_t>(b)];
+            }
+            return covered < n;  // the intervals are disjoint: their runs are too
+        } else {
+            bool any = false;
+            for (std::size_t b = 0; b < Bins; ++b) {
+                out[b] = 1.0f - dist.restriction(lat.lambda(b, u));
+                any |= out[b] != 0.0f;
+            }
+            return any;
+        }
+    }
+
+    const bin_tables<Bins>& m_t;
+    bool m_on = false;
+    bin_position m_bp;
+    std::uint32_t m_material = 0;
+    float m_tb_max = 0.0f;  ///< max of t_b, kept by every update of t_b (for Russian roulette)
+    float m_cos = 0.0f;     ///< a separable BxDF's factor toward the light being sampled
+    /// t_b (starts at 1 − r_α(λ_b)), L_b, the vertex's reflectance and its f·|cos| toward the light
+    sampled_spectrum<Bins> m_tb, m_lb, m_refl, m_f;
+    std::array<float, Bins> m_scratch;  ///< for emitters off the lattice (binned_spectrum::at)
+    mutable std::array<float, Bins> m_eta_scratch, m_eta2_scratch, m_inv_eta2_scratch;
+};
+
+}  // namespace iris
