@@ -1,7 +1,6 @@
 // Whole-renderer throughput (samples/s, rays/s) through iris::renderer on built-in scenes:
 // presets side by side (what the B term of PropagateUnused costs per sample), 1 vs 2
-// threads, and the dispersive vs non-dispersive instantiation on a scene without
-// dispersion (what the feature summary's choice saves), and the hot loop compiled for each
+// threads, and the hot loop compiled for each
 // instruction set this CPU runs (baseline SSE2, AVX2, AVX-512). Compiles to nothing without
 // iris::renderer and iris::scene (bench/CMakeLists.txt links them when they exist).
 // Run: build/release/bench/iris-bench --benchmark_filter=Render
@@ -17,25 +16,15 @@
 
 namespace {
 
-/// \brief Built-in scenes, plus "cornell-plain": cornell with its glass made
-/// non-dispersive (n = n_d), so the feature summary picks the non-dispersive instantiation.
+/// \brief The built-in scenes, built once.
 const iris::scene_desc& scene(const std::string& name) {
     static std::map<std::string, iris::scene_desc> cache;
     if (auto it = cache.find(name); it != cache.end()) return it->second;
-    iris::scene_desc s;
-    if (name == "cornell-plain") {
-        s = iris::scene::builtin_scene("cornell");
-        for (auto& m : s.materials)
-            if (auto* d = std::get_if<iris::material::dielectric>(&m))
-                d->ior = iris::constant_ior{iris::refractive_index(d->ior, 587.5618)};
-    } else {
-        s = iris::scene::builtin_scene(name);
-    }
-    return cache.emplace(name, std::move(s)).first->second;
+    return cache.emplace(name, iris::scene::builtin_scene(name)).first->second;
 }
 
 void render(benchmark::State& state, const std::string& scene_name, const std::string& preset, int threads,
-            bool force_dispersive, const std::string& isa = "auto") {
+            const std::string& isa = "auto") {
     const auto& s = scene(scene_name);
     iris::renderer::options o;
     o.preset = preset;
@@ -44,7 +33,6 @@ void render(benchmark::State& state, const std::string& scene_name, const std::s
     o.spp = 4;
     o.threads = threads;
     o.nthold = 1 << 20;  // α stays < 1: PropagateUnused evaluates its B term on every sample
-    o.force_dispersive = force_dispersive;
     o.isa = isa;
     double samples = 0, rays = 0;
     for (auto _ : state) {
@@ -63,22 +51,15 @@ void register_all() {
         for (const char* p : {"hwss", "paper", "paper-fast", "restrict-only", "scaled-pdf", "hwss-c1", "hwss-c8"})
             for (int t : {1, 2})
                 benchmark::RegisterBenchmark((std::string("Render/") + sc + "/" + p + "/threads:" + std::to_string(t)).c_str(),
-                                             [=](benchmark::State& st) { render(st, sc, p, t, false); })
+                                             [=](benchmark::State& st) { render(st, sc, p, t); })
                     ->Unit(benchmark::kMillisecond)
                     ->UseRealTime()
                     ->MinTime(1.0);
-    for (const char* p : {"hwss", "paper"})
-        for (bool force : {false, true})
-            benchmark::RegisterBenchmark((std::string("Render/cornell-plain/") + p + (force ? "/dispersive-instantiation" : "/plain-instantiation")).c_str(),
-                                         [=](benchmark::State& st) { render(st, "cornell-plain", p, 1, force); })
-                ->Unit(benchmark::kMillisecond)
-                ->UseRealTime()
-                ->MinTime(1.0);
     // the hot loop per instruction set (images are identical; renderer_core_test checks that)
     for (const auto& isa : iris::renderer::instruction_sets())
         for (const char* p : {"hwss", "paper", "paper-fast"})
             benchmark::RegisterBenchmark((std::string("Render/falling-cubes/") + p + "/isa:" + isa).c_str(),
-                                         [=](benchmark::State& st) { render(st, "falling-cubes", p, 1, false, isa); })
+                                         [=](benchmark::State& st) { render(st, "falling-cubes", p, 1, isa); })
                 ->Unit(benchmark::kMillisecond)
                 ->UseRealTime()
                 ->MinTime(1.0);

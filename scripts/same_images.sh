@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The byte-identity check of a refactoring: render every built-in scene with every preset
 # and with the bsdf-only estimator (small: 96x96, 16 spp, N_thold 6, so that the passes
-# before and after the relaxation both run; the prism is the dispersive instantiation,
-# the other scenes the non-dispersive one), then compare two such sets pixel by pixel.
+# before and after the relaxation both run; scenes with and without dispersive glass),
+# then compare two such sets pixel by pixel.
 #   bash scripts/same_images.sh render DIR        # with build/release (must be built)
 #   bash scripts/same_images.sh compare DIR_A DIR_B
 # `compare` prints every image whose pixels differ (max |a - b| > 0) and exits 1 if any do.

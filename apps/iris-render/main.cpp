@@ -103,7 +103,6 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
                         {"preset", a.preset},
                         {"config", st.config_name},
                         {"estimator", st.estimator},
-                        {"dispersive_instantiation", st.dispersive_instantiation},
                         {"spp", st.spp_done},
                         {"width", st.width},
                         {"height", st.height},

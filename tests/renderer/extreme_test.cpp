@@ -212,7 +212,7 @@ iris::film render_config(const iris::scene_desc& scene, const options& opt, iris
     const Config cfg(params);
     const iris::embree::intersector tracer(scene);
     const iris::light_sampler lights(scene);
-    const iris::path_integrator<Config, true> integ(scene, lights, opt.path);
+    const iris::path_integrator<Config> integ(scene, lights, opt.path);
     iris::film f(opt.width, opt.height);
     const iris::camera_rays cam(scene.camera, f.width(), f.height());
     st.isa = "baseline";

@@ -84,13 +84,6 @@ TEST(Renderer, EveryPresetRendersEveryBuiltInSceneWithoutNonFiniteSamples) {
     }
 }
 
-TEST(Renderer, FeatureSummaryPicksTheInstantiation) {
-    const auto furnace = render(iris::scene::builtin_scene("furnace"), "hwss", 1, 4, 4);
-    EXPECT_FALSE(furnace.status.dispersive_instantiation);
-    const auto cubes = render(iris::scene::builtin_scene("falling-cubes"), "hwss", 1, 4, 4);
-    EXPECT_TRUE(cubes.status.dispersive_instantiation);
-}
-
 // Cancellation and option validation do not depend on the scene: they are tested once, in
 // renderer_core_test.cpp (RendererCore.CancelKeepsTheLastCompletePass, .BadOptionsNameWhatIsAccepted).
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief `path_integrator<Config, Dispersive, Bins>`: unidirectional spectral path tracing with
+/// \brief `path_integrator<Config, Bins>`: unidirectional spectral path tracing with
 /// next-event estimation, MIS between BSDF and light sampling, Russian roulette, C
 /// hero-rotated wavelengths with the corrected HWSS MIS weight (SPEC §2), and the
 /// config's bias policy (SPEC §3).
@@ -27,9 +27,10 @@
 /// (`collect_emission`), next-event estimation (`next_event`), BSDF sampling, Russian
 /// roulette (`survives_roulette`).
 ///
-/// `Dispersive = false` is the instantiation for scenes without λ-dependent directions:
-/// there every p(x̄|λ_k) equals the hero's, ρ ≡ 1, so no per-wavelength pdf is evaluated
-/// or tracked (the feature summary picks it; docs/performance.md measures what it saves).
+/// One instantiation serves every scene: without λ-dependent directions every p(x̄|λ_k)
+/// equals the hero's, each ratio is exactly 1 and the MIS weight reduces to 1/C; a
+/// separate instantiation that skipped the ratios saved nothing measurable and was
+/// removed (docs/performance.md).
 
 #include <cmath>
 #include <cstddef>
@@ -77,13 +78,12 @@ constexpr std::size_t bins_of() noexcept {
 }
 }  // namespace detail
 
-template <class Config, bool Dispersive, std::size_t Bins = detail::bins_of<Config>()>
+template <class Config, std::size_t Bins = detail::bins_of<Config>()>
 class path_integrator {
 public:
     static constexpr std::size_t C = Config::wavelength_count;
     static constexpr bool propagates = Config::bias_type::propagates;
     static constexpr bool scales_pdf = Config::bias_type::scales_pdf;
-    static constexpr bool dispersive = Dispersive;
     static constexpr std::size_t bins = Bins;
 
     path_integrator(const scene_desc& scene, const light_sampler& lights, path_settings settings = {})
@@ -194,10 +194,8 @@ private:
         void scatter(const bsdf_sample<C>& s) noexcept {
             const float p0 = s.pdf[0];
             beta *= s.f_cos / p0;
-            if constexpr (Dispersive) {
-                rho_before = rho;
-                rho *= s.pdf / p0;
-            }
+            rho_before = rho;
+            rho *= s.pdf / p0;
             prev_delta = s.delta;
             prev_pdf = p0;
             if (s.kind == lobe::transmission) eta_scale *= s.eta * s.eta;
@@ -248,7 +246,7 @@ private:
         const shadow_segment sh = shadow_ray_between(vx.sp, vx.ng, ls->point, ls->normal);
         if (tracer.occluded(sh.origin, sh.direction, sh.t_max)) return;
         const float pl = ls->pdf_area * d2 / std::fabs(cos_l);
-        const sampled_spectrum<C> pb = bsdf_pdfs(bxdf, vx.ng, vx.wo, wi, hero);
+        const sampled_spectrum<C> pb = bxdf.template pdf<C>(vx.ng, vx.wo, wi, hero);
         hp.lc += hp.beta * f * m_hero.emission[ls->emitter](wl) / (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
         bterm.template light<B>(ls->emitter, balance_heuristic(pl, pb[0]), pl);
     }
@@ -267,14 +265,6 @@ private:
             bterm.survive(survive);
         }
         return true;
-    }
-
-    /// \brief Per-wavelength BSDF pdfs; without dispersion all equal the hero's.
-    template <class B>
-    static sampled_spectrum<C> bsdf_pdfs(const B& bxdf, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
-                                         const sampled_spectra<C>& hero) noexcept {
-        if constexpr (Dispersive) return bxdf.template pdf<C>(n, wo, wi, hero);
-        else return sampled_spectrum<C>(bxdf.template pdf<1>(n, wo, wi, hero)[0]);  // reads λ₀'s spectra only
     }
 
     const scene_desc& m_scene;

@@ -15,14 +15,14 @@
 
 namespace iris::renderer::detail {
 
-template <class Preset, bool Dispersive, isa I>
+template <class Preset, isa I>
 void render_preset(const render_job& job) {
     typename Preset::parameters params;
     params.n_thold = static_cast<std::uint32_t>(job.opt.nthold);
     params.domain = {job.scene.lambda_min, job.scene.lambda_max};
     const Preset cfg(params);
     const light_sampler lights(job.scene);
-    const path_integrator<Preset, Dispersive> integ(job.scene, lights, job.opt.path);
+    const path_integrator<Preset> integ(job.scene, lights, job.opt.path);
     const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
     // α changes every pass until N_thold and then stays 1: build p_α only when it changes
     float built_alpha = -1.0f;

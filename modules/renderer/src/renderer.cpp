@@ -29,19 +29,17 @@ using detail::render_fn;
 /// \brief I's copy where this build has one, else the baseline loop.
 constexpr isa compiled(isa i) noexcept { return IRIS_ISA_DISPATCH ? i : isa::baseline; }
 
-/// \brief A preset's functions, indexed [dispersive][instruction set].
+/// \brief A preset's functions, indexed by instruction set.
 template <class P>
-constexpr std::array<std::array<render_fn, 3>, 2> functions_of() noexcept {
+constexpr std::array<render_fn, 3> functions_of() noexcept {
     using detail::render_preset;
-    return {{{&render_preset<P, false, compiled(isa::baseline)>, &render_preset<P, false, compiled(isa::avx2)>,
-              &render_preset<P, false, compiled(isa::avx512)>},
-             {&render_preset<P, true, compiled(isa::baseline)>, &render_preset<P, true, compiled(isa::avx2)>,
-              &render_preset<P, true, compiled(isa::avx512)>}}};
+    return {&render_preset<P, compiled(isa::baseline)>, &render_preset<P, compiled(isa::avx2)>,
+            &render_preset<P, compiled(isa::avx512)>};
 }
 
 /// \brief The dispatch table: every preset's functions, in preset-list order.
 constexpr auto preset_table = []<class... P>(type_list<P...>) {
-    return std::array<std::array<std::array<render_fn, 3>, 2>, sizeof...(P)>{functions_of<P>()...};
+    return std::array<std::array<render_fn, 3>, sizeof...(P)>{functions_of<P>()...};
 }(iris::presets{});
 
 constexpr std::array<render_fn, 3> bsdf_only_table{&detail::render_bsdf_only<compiled(isa::baseline)>,
@@ -50,11 +48,11 @@ constexpr std::array<render_fn, 3> bsdf_only_table{&detail::render_bsdf_only<com
 
 /// \brief The one place where a render's runtime choices become a compiled function.
 /// \throws std::invalid_argument for an unknown preset.
-render_fn find_render(const std::string& estimator, const std::string& preset, bool dispersive, isa i) {
+render_fn find_render(const std::string& estimator, const std::string& preset, isa i) {
     const auto column = static_cast<std::size_t>(i);
     if (estimator == "bsdf-only") return bsdf_only_table[column];
     const std::size_t index = dispatch_preset(preset, []<class P>() { return preset_index<P>(); });
-    return preset_table[index][dispersive ? 1 : 0][column];
+    return preset_table[index][column];
 }
 
 /// \brief The instruction sets' names, in `isa`'s order.
@@ -111,10 +109,8 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.width = w;
     st.height = ht;
     st.spp_total = opt.spp;
-    st.dispersive_instantiation = opt.force_dispersive || scene.features().dispersive();
     st.isa = isa_names[static_cast<std::size_t>(chosen)];
-    if (opt.estimator == "bsdf-only") st.dispersive_instantiation = false;  // one wavelength: nothing to track
-    const render_fn fn = find_render(opt.estimator, opt.preset, st.dispersive_instantiation, chosen);
+    const render_fn fn = find_render(opt.estimator, opt.preset, chosen);
     fn(detail::render_job{scene, tracer, opt, out, st, h});
     return st;
 }

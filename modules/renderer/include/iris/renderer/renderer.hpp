@@ -5,9 +5,9 @@
 /// seed whatever the thread count (per-pixel, per-sample random streams; each pixel's
 /// samples are accumulated in sample order by whichever thread owns its tile).
 ///
-/// The preset name and the scene's feature summary are mapped once, here, onto one
-/// compile-time instantiation `path_integrator<Config, Dispersive>`; nothing below
-/// branches on the policy at run time.
+/// The preset name and the instruction set are mapped once, here, onto one compile-time
+/// instantiation `path_integrator<Config>` with its hot loop compiled for that instruction
+/// set; nothing below branches on the policy at run time.
 
 #include <atomic>
 #include <cstddef>
@@ -32,9 +32,6 @@ struct options {
     int height = 0;
     path_settings path{};
     int tile_size = 16;
-    /// \brief Force the dispersive instantiation even on a scene without dispersion (for
-    /// measuring what the non-dispersive one saves; results are identical in expectation).
-    bool force_dispersive = false;
     /// \brief Instruction set of the integrator's hot loop: "auto" (the widest this CPU
     /// runs), or one of `instruction_sets()` ("baseline", "avx2", "avx512"). Every choice
     /// gives bit-identical images; only the speed differs (docs/performance.md).
@@ -49,7 +46,6 @@ struct options {
 struct status {
     std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"; "bsdf-only" for that estimator
     std::string estimator;         ///< "nee-mis" or "bsdf-only"
-    bool dispersive_instantiation = false;
     std::string isa;               ///< instruction set the hot loop ran with
     int width = 0, height = 0;
     int threads = 0;               ///< worker threads the render may use (its arena's size)
