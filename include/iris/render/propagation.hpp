@@ -229,7 +229,7 @@ private:
         const auto& lat = m_t.lattice;
         if constexpr (requires { dist.bound_kernel().support(); } &&
                       requires { requires std::remove_cvref_t<decltype(dist.bound_kernel())>::indicator; }) {
-            out = sampled_spectrum<Bins>(1.0f);
+            for (std::size_t b = 0; b < Bins; ++b) out[b] = 1.0f;  // in place: assigning a temporary costs a 320-byte rep movsq per sample
             const auto lambda = [&](int b) { return lat.lambda(static_cast<std::size_t>(b), u); };  // non-decreasing
             constexpr int n = static_cast<int>(Bins);
             int covered = 0;
