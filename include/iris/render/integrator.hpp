@@ -117,7 +117,7 @@ public:
             const auto& tri = shape.mesh.triangles[hit->prim];
             const glm::vec3 &v0 = shape.mesh.positions[tri[0]], &v1 = shape.mesh.positions[tri[1]],
                             &v2 = shape.mesh.positions[tri[2]];
-            vertex vx{point_on_triangle(v0, v1, v2, hit->u, hit->v), glm::cross(v1 - v0, v2 - v0), -dir};
+            vertex vx{point_on_triangle(v0, v1, v2, hit->u, hit->v), hit->geometric_normal, -dir};  // Embree's Ng
             const float ng_len = glm::length(vx.ng);
             if (!(ng_len > 0.0f)) break;  // degenerate triangle
             vx.ng /= ng_len;
