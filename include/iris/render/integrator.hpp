@@ -125,7 +125,8 @@ public:
             if (shape.emitter) collect_emission(*hit, *shape.emitter, vx, wl, hp, bterm);  // found by BSDF sampling
             if (depth >= m_settings.max_depth) break;
             // one visit: the rest of the vertex is compiled for its material's BxDF
-            const auto bs = visit_bxdf(m_scene.materials[shape.material], [&](const auto& bxdf) {
+            glm::vec3 wi;
+            const bool scattered = visit_bxdf(m_scene.materials[shape.material], [&](const auto& bxdf) {
                 using B = std::remove_cvref_t<decltype(bxdf)>;
                 // the material's spectra, each read once per vertex (a diffuse vertex reads its
                 // reflectance for NEE and for BSDF sampling): the hero's from its lattice tables
@@ -135,18 +136,20 @@ public:
                 if constexpr (B::reads_eta) hero.index = detail::etas(bxdf.ior(), wl);
                 bterm.enter(bxdf, shape.material);
                 if constexpr (!B::delta) next_event(tracer, bxdf, vx, wl, hero, hp, bterm, rng, out);
-                // BSDF sampling with the hero wavelength; the bins follow it
+                // BSDF sampling with the hero wavelength; the bins follow it (the sample stays
+                // in here: returning it through the visit cost a copy with store-forwarding stalls)
                 const float u_lobe = rng.next();
-                auto s = bxdf.template sample<C>(vx.ng, vx.wo, wl, u_lobe, rng.next2(), hero);
-                if (!s || !(s->pdf[0] > 0.0f)) return decltype(s){};
+                const auto s = bxdf.template sample<C>(vx.ng, vx.wo, wl, u_lobe, rng.next2(), hero);
+                if (!s || !(s->pdf[0] > 0.0f)) return false;
                 bterm.follow(bxdf, vx.ng, vx.wo, *s);
-                return s;
+                hp.scatter(*s);
+                wi = s->wi;
+                return true;
             });
-            if (!bs) break;
-            hp.scatter(*bs);
+            if (!scattered) break;
             if (depth + 1 >= m_settings.rr_start_depth && !survives_roulette(hp, bterm, rng)) break;
-            origin = offset_ray_origin(vx.sp, vx.ng, bs->wi);
-            dir = bs->wi;
+            origin = offset_ray_origin(vx.sp, vx.ng, wi);
+            dir = wi;
         }
 
         // F_R: Σ_j r_α(λ_j)/p_α(λ_j) (÷ Z_α) · L_j · cmf(λ_j), then B's Σ_b
