@@ -18,20 +18,29 @@
 
 namespace iris::detail {
 
+/// \brief Unpolarised Fresnel reflectance of a dielectric interface from c = |cos θi| and
+/// η′², the square of the relative index seen from the incident side (η_t/η_i), in the
+/// form of Walter et al. 2007 (eq. 22) with g = √(η′² − 1 + c²) (= η′ cos θt):
+///   F = ½ (g−c)² [(c(g−c)+1)² + (c(g+c)−1)²] / [(g+c)² (c(g−c)+1)²],  F = 1 if g² ≤ 0
+/// (total internal reflection, and g + c = 0). One square root and one division, η′² read
+/// rather than computed, no branch (the comparison is a select): the one Fresnel of iris,
+/// for the hero (`fresnel_dielectric`) and for the B term's bins (`fresnel_follow`, where
+/// the compiler vectorises it over 80 bins).
+inline float fresnel_walter(float c, float eta2) noexcept {
+    const float g2 = eta2 - 1.0f + c * c;
+    const float g = std::sqrt(std::max(0.0f, g2));
+    const float gm = g - c, gp = g + c;
+    const float u = c * gm + 1.0f, v = c * gp - 1.0f;
+    const float ratio = 0.5f * (gm * gm * (u * u + v * v)) / (gp * gp * (u * u));  // everywhere: a select, not a branch
+    return g2 > 0.0f ? ratio : 1.0f;
+}
+
 /// \brief Unpolarised Fresnel reflectance of a dielectric interface. `cos_i` is measured
 /// on the side of the incident direction's normal; eta = n_inside / n_outside.
 inline float fresnel_dielectric(float cos_i, float eta) noexcept {
     cos_i = std::clamp(cos_i, -1.0f, 1.0f);
-    if (cos_i < 0.0f) {
-        eta = 1.0f / eta;
-        cos_i = -cos_i;
-    }
-    const float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1.0f) return 1.0f;  // total internal reflection
-    const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
-    const float r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    const float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5f * (r_parl * r_parl + r_perp * r_perp);
+    const float eta2 = eta * eta;
+    return fresnel_walter(std::fabs(cos_i), cos_i < 0.0f ? 1.0f / eta2 : eta2);
 }
 
 /// \brief Refract `wi` (pointing away) through a surface with normal `n`; eta = n_inside /
@@ -64,32 +73,23 @@ sampled_spectrum<N> etas(const ior_model& ior, const sampled_wavelengths<N>& wl)
 
 /// \brief The weight of a delta event at dielectric at M wavelengths that follow the hero's
 /// lobe `kind`: F(λ_b) for reflection, (1 − F(λ_b))/η′_b² for transmission, with `co` =
-/// cos θo on the normal's side and η², 1/η² given (anything indexable by k < M).
-///
-/// F is `fresnel_dielectric` for every k at once in the form of Walter et al. 2007 (eq. 22)
-/// with c = |cos θi| and g = √(η′² − 1 + c²) (= η′ cos θt):
-///   F = ½ (g−c)² [(c(g−c)+1)² + (c(g+c)−1)²] / [(g+c)² (c(g−c)+1)²],  F = 1 if g² ≤ 0,
-/// one square root and one division per wavelength, and η′² read, not computed. The side
-/// (co's sign) is the same for all wavelengths, so the loop is branch-free arithmetic and
-/// selects, which the compiler vectorises (80 bins at every glass vertex: this is the B
-/// term's hot loop; choosing the tables once, outside the loop, stops GCC vectorising it).
+/// cos θo on the normal's side and η², 1/η² given (anything indexable by k < M). F is
+/// `fresnel_walter`; the side (co's sign) is the same for all wavelengths, so the loop is
+/// branch-free arithmetic and selects, which the compiler vectorises (80 bins at every
+/// glass vertex: this is the B term's hot loop; choosing the tables once, outside the loop,
+/// stops GCC vectorising it).
 template <std::size_t M, class Eta2, class InvEta2>
 sampled_spectrum<M> fresnel_follow(float co, lobe kind, const Eta2& sq, const InvEta2& isq) noexcept {
     co = std::clamp(co, -1.0f, 1.0f);
     const bool flip = co < 0.0f, from_outside = co > 0.0f;  // as fresnel_dielectric and the hero's sample
     const bool reflection = kind == lobe::reflection;
-    const float c = std::fabs(co), c2 = c * c;
+    const float c = std::fabs(co);
     sampled_spectrum<M> w;
     for (std::size_t k = 0; k < M; ++k) {
         const float e2 = sq[k], ie2 = isq[k];
         const float ef2 = flip ? ie2 : e2;              // η′²: the relative index seen from ωo's side
         const float inv_et2 = from_outside ? ie2 : e2;  // 1/η′² of the hero's transmission
-        const float g2 = ef2 - 1.0f + c2;
-        const float g = std::sqrt(std::max(0.0f, g2));
-        const float gm = g - c, gp = g + c;
-        const float u = c * gm + 1.0f, v = c * gp - 1.0f;
-        const float ratio = 0.5f * (gm * gm * (u * u + v * v)) / (gp * gp * (u * u));  // everywhere: a select, not a branch
-        const float f = g2 > 0.0f ? ratio : 1.0f;  // total internal reflection (also where g + c = 0)
+        const float f = fresnel_walter(c, ef2);
         w[k] = reflection ? f : (1.0f - f) * inv_et2;
     }
     return w;
