@@ -7,7 +7,6 @@
 
 #include <cstddef>
 #include <optional>
-#include <type_traits>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -17,11 +16,6 @@
 #include "iris/spectrum/sampled.hpp"
 
 namespace iris {
-
-/// \brief Is this material a delta BSDF (mirror, smooth glass)?
-inline bool is_delta(const material_desc& m) noexcept {
-    return visit_bxdf(m, [](const auto& b) { return std::remove_cvref_t<decltype(b)>::delta; });
-}
 
 /// \brief f(ωo, ωi, λ_k)·|cos θi| for non-delta materials (0 for delta ones).
 template <std::size_t N>
@@ -44,14 +38,6 @@ template <std::size_t N>
 std::optional<bsdf_sample<N>> bsdf_sample_hero(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
                                                const sampled_wavelengths<N>& wl, float u_lobe, glm::vec2 u) noexcept {
     return visit_bxdf(mat, [&](const auto& b) { return b.template sample<N>(n, wo, wl, u_lobe, u, scene_spectra(b, wl)); });
-}
-
-/// \brief The weight the wavelengths `wl` take when they follow the hero's direction `wi`
-/// and lobe `kind` (the B term's bins, `follow` of the material's BxDF).
-template <std::size_t M>
-sampled_spectrum<M> follow_weight(const material_desc& mat, const glm::vec3& n, const glm::vec3& wo,
-                                  const glm::vec3& wi, lobe kind, const sampled_wavelengths<M>& wl) noexcept {
-    return visit_bxdf(mat, [&](const auto& b) { return b.template follow<M>(n, wo, wi, kind, scene_spectra(b, wl)); });
 }
 
 }  // namespace iris
