@@ -33,6 +33,26 @@ TEST(BinLattice, StepsPerBinFollowTheDomain) {
     EXPECT_EQ(iris::bin_lattice<80>(380.3f, 780.0f).steps(), 5u);   // no whole-nm lattice: ≈ 1 nm
 }
 
+// One estimator: the renderer's λ_b is the sampling layer's bin_layout::lambda, bit for bit
+// (the estimator tests and the fuzzer check that function), on the domains above.
+template <std::size_t B>
+void expect_layout_wavelengths(float lo, float hi) {
+    const iris::bin_lattice<B> l(lo, hi);
+    const auto layout = iris::bias::bin_layout::with_count({lo, hi}, B);
+    ASSERT_EQ(layout.count(), B);
+    for (float u : jitters())
+        for (std::size_t b = 0; b < B; ++b) ASSERT_EQ(l.lambda(b, u), layout.lambda(b, u)) << "u " << u << " bin " << b;
+}
+
+TEST(BinLattice, WavelengthsAreTheBinLayouts) {
+    expect_layout_wavelengths<80>(380.0f, 780.0f);
+    expect_layout_wavelengths<80>(400.0f, 700.0f);
+    expect_layout_wavelengths<80>(380.0f, 779.0f);
+    expect_layout_wavelengths<8>(380.0f, 780.0f);
+    expect_layout_wavelengths<7>(380.0f, 780.0f);
+    expect_layout_wavelengths<80>(380.3f, 780.0f);
+}
+
 template <std::size_t B>
 void expect_positions_inside(float lo, float hi) {
     const iris::bin_lattice<B> l(lo, hi);

@@ -26,12 +26,14 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <span>
 #include <type_traits>
 #include <vector>
 
 #include "iris/render/materials/materials.hpp"
 #include "iris/render/scene.hpp"
+#include "iris/sampling/bias/bin_layout.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/data/cie1931.hpp"
 #include "iris/spectrum/sampled.hpp"
@@ -48,7 +50,8 @@ struct bin_position {
     float u = 0.0f;
 };
 
-/// \brief `Bins` equal bins of width Δ over [λmin, λmax], each split into K lattice steps.
+/// \brief `Bins` equal bins of width Δ over [λmin, λmax] — the sampling layer's
+/// `bias::bin_layout::with_count(domain, Bins)` — each split into K lattice steps.
 template <std::size_t Bins>
 class bin_lattice {
     static_assert(Bins > 0, "a bin lattice needs at least one bin");
@@ -60,6 +63,12 @@ public:
     bin_lattice(float lambda_min, float lambda_max)
         : m_lo(lambda_min), m_hi(lambda_max), m_min(lambda_min),
           m_width((lambda_max - lambda_min) / static_cast<float>(Bins)) {
+        const auto layout = bias::bin_layout::with_count({lambda_min, lambda_max}, Bins);
+        for (std::size_t b = 0; b < Bins; ++b) {
+            const auto e = layout.edges(b);
+            m_edge_lo[b] = e.lo;
+            m_edge_hi[b] = e.hi;
+        }
         const double delta = (m_hi - m_lo) / static_cast<double>(Bins);
         auto whole = [](double x) { return std::fabs(x - std::round(x)) < 1e-6; };
         for (int m = 1; m <= 8 && !m_whole_nm; ++m)
@@ -77,10 +86,10 @@ public:
     float bin_width() const noexcept { return m_width; }
     std::size_t steps() const noexcept { return m_steps; }  ///< K
 
-    /// \brief λ_b = λmin + (b + u)Δ.
-    float lambda(std::size_t b, float u) const noexcept {
-        return m_min + (static_cast<float>(static_cast<int>(b)) + u) * m_width;  // int → float vectorises, size_t does not
-    }
+    /// \brief λ_b for jitter u ∈ [0, 1): `bias::bin_layout::lambda`, from the bin's float
+    /// edges cached here (two loads and a multiply–add per bin, which vectorise; the
+    /// layout's own call computes the edges in double each time).
+    float lambda(std::size_t b, float u) const noexcept { return bias::bin_layout::jitter(m_edge_lo[b], m_edge_hi[b], u); }
 
     /// \brief The lattice position of jitter u ∈ [0, 1).
     bin_position position(float u) const noexcept {
@@ -110,6 +119,7 @@ public:
 private:
     double m_lo, m_hi;
     float m_min, m_width;
+    std::array<float, Bins> m_edge_lo, m_edge_hi;  ///< the layout's bin edges in float
     std::size_t m_steps = 1;
     int m_per_nm = 1;
     bool m_whole_nm = false;
@@ -143,8 +153,7 @@ public:
             *this = binned_spectrum(lattice, [&](double l) { return s(l); });
         } else {
             m_exact = [s](double l) { return s(l); };
-            m_min = lattice.lambda_min();
-            m_width = lattice.bin_width();
+            m_lattice = std::make_shared<const bin_lattice<Bins>>(lattice);
         }
     }
 
@@ -165,7 +174,7 @@ public:
     view at(bin_position p, std::array<float, Bins>& scratch) const {
         if (m_exact) {
             for (std::size_t b = 0; b < Bins; ++b)
-                scratch[b] = static_cast<float>(m_exact(m_min + (static_cast<float>(b) + p.u) * m_width));
+                scratch[b] = static_cast<float>(m_exact(m_lattice->lambda(b, p.u)));
             return {scratch.data(), zeros().data(), 1.0f, 0.0f};  // x·1 + 0·0 = x exactly
         }
         if (m_rows.empty()) return {zeros().data(), zeros().data(), 1.0f, 0.0f};
@@ -195,7 +204,7 @@ private:
     std::size_t m_steps = 0;
     std::vector<std::array<float, Bins>> m_rows;
     std::function<double(double)> m_exact;  ///< set when the lattice would not reproduce the table
-    float m_min = 0.0f, m_width = 0.0f;
+    std::shared_ptr<const bin_lattice<Bins>> m_lattice;  ///< with m_exact: where the bins' λ_b are
 };
 
 /// \brief A tabulated spectrum re-tabulated in float on a 1 nm lattice over the domain,

@@ -98,8 +98,8 @@ struct integrator_config {
 
     /// \brief The B term's bins on the configured domain: the bias policy's count of equal
     /// bins (80 for `propagate_unused`, 5 nm on 380–780 nm; B for `propagate_coarse<B>`),
-    /// the bins the renderer's `bin_lattice` (iris/render/bins.hpp) uses, which computes
-    /// λ_b in float rather than in double; 5 nm bins for a policy without a count.
+    /// the bins the renderer's `bin_lattice` (iris/render/bins.hpp) is built from, whose λ_b
+    /// are this layout's `lambda`, bit for bit; 5 nm bins for a policy without a count.
     constexpr bias::bin_layout bins() const noexcept {
         if constexpr (requires { Bias::bins; }) return bias::bin_layout::with_count(params.domain, Bias::bins);
         else return bias::bin_layout(params.domain);

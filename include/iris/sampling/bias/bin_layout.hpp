@@ -61,12 +61,24 @@ public:
     constexpr double width(std::size_t b) const noexcept {
         return std::min(m_width, static_cast<double>(m_domain.max_nm) - lower(b));
     }
-    /// \brief λ_b = lower_b + u Δλ_b for u in [0, 1), kept inside the bin in float.
+    /// \brief Bin b's edges rounded to float (lo ≤ hi: rounding is monotonic).
+    struct float_edges {
+        float lo, hi;
+    };
+    constexpr float_edges edges(std::size_t b) const noexcept {
+        const double lo = lower(b);
+        return {static_cast<float>(lo), static_cast<float>(lo + width(b))};
+    }
+    /// \brief The jittered wavelength of a bin with float edges [lo, hi] for u in [0, 1):
+    /// lo + u (hi − lo), never past hi. Inside the bin in float (lo plus a non-negative term
+    /// is ≥ lo; the minimum keeps it ≤ hi), and uniform in it up to rounding. The renderer's
+    /// `bin_lattice` (iris/render/bins.hpp) evaluates this function from edges it caches
+    /// per bin, so λ_b is the same number here, in the estimator tests and in a render.
+    static constexpr float jitter(float lo, float hi, float u) noexcept { return std::min(lo + u * (hi - lo), hi); }
+    /// \brief λ_b for jitter u (u outside [0, 1) or NaN counts as 0).
     constexpr float lambda(std::size_t b, float u) const noexcept {
-        const double lo = lower(b), w = width(b);
-        const double uu = u >= 0.0f && u < 1.0f ? static_cast<double>(u) : 0.0;  // NaN → 0
-        const float l = static_cast<float>(lo + uu * w);
-        return std::clamp(l, static_cast<float>(lo), static_cast<float>(lo + w));
+        const float_edges e = edges(b);
+        return jitter(e.lo, e.hi, u >= 0.0f && u < 1.0f ? u : 0.0f);
     }
 
     /// \brief All bins' wavelengths for jitter u, with pdf(b) = 1/Δλ_b (so the B term reads
