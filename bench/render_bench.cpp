@@ -24,7 +24,7 @@ const iris::scene_desc& scene(const std::string& name) {
 }
 
 void render(benchmark::State& state, const std::string& scene_name, const std::string& preset, int threads,
-            const std::string& isa = "auto") {
+            const std::string& isa = "auto", const std::string& sampler = "independent") {
     const auto& s = scene(scene_name);
     iris::renderer::options o;
     o.preset = preset;
@@ -34,6 +34,7 @@ void render(benchmark::State& state, const std::string& scene_name, const std::s
     o.threads = threads;
     o.nthold = 1 << 20;  // α stays < 1: PropagateUnused evaluates its B term on every sample
     o.isa = isa;
+    o.sampler = sampler;
     double samples = 0, rays = 0;
     for (auto _ : state) {
         iris::film f(1, 1);
@@ -52,6 +53,15 @@ void register_all() {
             for (int t : {1, 2})
                 benchmark::RegisterBenchmark((std::string("Render/") + sc + "/" + p + "/threads:" + std::to_string(t)).c_str(),
                                              [=](benchmark::State& st) { render(st, sc, p, t); })
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime()
+                    ->MinTime(1.0);
+    // the samplers' cost per camera sample (issue 12's target: <= 5 % over independent)
+    for (const char* sc : {"cornell", "falling-cubes"})
+        for (const char* p : {"hwss", "paper"})
+            for (const char* smp : {"independent", "sobol", "zsobol"})
+                benchmark::RegisterBenchmark((std::string("Render/") + sc + "/" + p + "/sampler:" + smp).c_str(),
+                                             [=](benchmark::State& st) { render(st, sc, p, 1, "auto", smp); })
                     ->Unit(benchmark::kMillisecond)
                     ->UseRealTime()
                     ->MinTime(1.0);

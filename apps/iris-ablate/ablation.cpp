@@ -92,9 +92,9 @@ private:
 };
 
 image reference_image(const scene_desc& scene, const ablation_options& opt, int w, int h, progress& prog) {
-    const std::string key = fmt::format("{}-{:016x}-{}x{}-ref{}-seed{:x}-v{}", file_safe(scene.name),
-                                        reference_key(scene, opt.scene), w, h, opt.reference_spp, reference_seed,
-                                        iris::version);
+    const std::string key = fmt::format("{}-{:016x}-{}x{}-ref{}-{}-seed{:x}-v{}", file_safe(scene.name),
+                                        reference_key(scene, opt.scene), w, h, opt.reference_spp, opt.ref_sampler(),
+                                        reference_seed, iris::version);
     const fs::path cached = opt.cache / (key + ".exr");
     if (fs::exists(cached)) {
         try {
@@ -116,6 +116,7 @@ image reference_image(const scene_desc& scene, const ablation_options& opt, int 
     ro.width = w;
     ro.height = h;
     ro.nthold = opt.nthold;
+    ro.sampler = opt.ref_sampler();
     film f(w, h);
     renderer::hooks hk;
     hk.on_pass = [&](const film&, const renderer::status& st) {
@@ -128,7 +129,8 @@ image reference_image(const scene_desc& scene, const ablation_options& opt, int 
     fs::create_directories(opt.cache, ec);
     if (!ec) {
         exr::write(cached, img,
-                   {{"iris:scene", scene.name}, {"iris:preset", "hwss"}, {"iris:spp", std::to_string(st.spp_done)},
+                   {{"iris:scene", scene.name}, {"iris:preset", "hwss"}, {"iris:sampler", opt.ref_sampler()},
+                    {"iris:spp", std::to_string(st.spp_done)},
                     {"iris:seed", std::to_string(reference_seed)}, {"iris:version", std::string(iris::version)}});
         prog.line(fmt::format("reference: {} spp in {:.1f} s, cached as {}", st.spp_done, st.seconds, cached.string()));
     }
@@ -179,6 +181,7 @@ ablation_result run_ablation(const ablation_options& opt) {
             ro.nthold = opt.nthold;
             ro.width = w;
             ro.height = h;
+            ro.sampler = opt.sampler;
             ro.spp = opt.budgets.empty() ? max_spp : 10'000'000;  // time-equal: stop by budget
             std::size_t next_spp = 0, next_budget = 0;
             film f(w, h);
@@ -188,7 +191,7 @@ ablation_result run_ablation(const ablation_options& opt) {
                 auto row = [&](double budget) {
                     const image img = film_now.to_image();
                     const auto m = compare(img, result.reference);
-                    return std::pair{ablation_row{scene.name, preset, seed, st.spp_done, st.seconds, m.mse, m.relmse,
+                    return std::pair{ablation_row{scene.name, preset, opt.sampler, seed, st.spp_done, st.seconds, m.mse, m.relmse,
                                                   m.ssim, budget},
                                      img};
                 };
@@ -196,7 +199,7 @@ ablation_result run_ablation(const ablation_options& opt) {
                     auto [r, img] = row(0.0);
                     result.spp_rows.push_back(r);
                     exr::write(opt.out / "snapshots" / fmt::format("{}-seed{}-{}spp.exr", file_safe(preset), seed, st.spp_done),
-                               img, {{"iris:scene", scene.name}, {"iris:preset", preset},
+                               img, {{"iris:scene", scene.name}, {"iris:preset", preset}, {"iris:sampler", opt.sampler},
                                      {"iris:spp", std::to_string(st.spp_done)}, {"iris:seed", std::to_string(seed)},
                                      {"iris:seconds", fmt::format("{:.3f}", st.seconds)}});
                     if (next_spp == 0 && seed == 1) result.first_snapshots.emplace_back(preset, img);

@@ -25,11 +25,14 @@ struct ablation_options {
     std::filesystem::path out;
     std::filesystem::path cache;
     std::string crop;  ///< "x,y,w,h"; empty: the centre
+    std::string sampler = "independent";  ///< of every preset's renders
+    std::string reference_sampler;         ///< of the reference; empty: `sampler`
+    const std::string& ref_sampler() const { return reference_sampler.empty() ? sampler : reference_sampler; }
 };
 
 /// \brief One row of results.csv (and of the time-equal table, where `budget` > 0).
 struct ablation_row {
-    std::string scene, preset;
+    std::string scene, preset, sampler;
     int seed = 0;
     int spp = 0;
     double seconds = 0, mse = 0, relmse = 0, ssim = 0;

@@ -3,12 +3,13 @@
 //   iris-ablate SCENE --presets hwss,paper,... --spp 16,32,64,128,256,512
 //       [--reference-spp N=16384] [--time-budgets 1,2,4,8s] [--seeds K=1]
 //       [--width W --height H (scene's)] [--threads T=all] [--nthold N=512]
-//       [--cache DIR=~/.cache/iris] [--crop x,y,w,h (centre)] -o DIR
+//       [--cache DIR=~/.cache/iris] [--crop x,y,w,h (centre)]
+//       [--sampler independent|sobol|zsobol] [--reference-sampler S (--sampler)] -o DIR
 //
-// Renders (or loads from the cache, keyed by scene content, size, seed, reference spp and code
+// Renders (or loads from the cache, keyed by scene content, size, seed, reference spp, sampler and code
 // — this executable's bytes) an unbiased `hwss` reference, renders each preset progressively once per seed
 // with snapshots at the requested spp (and wall-clock budgets), and writes DIR/results.csv
-// (scene,preset,seed,spp,seconds,mse,relmse,ssim), DIR/results_time.csv, the snapshot
+// (scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim), DIR/results_time.csv, the snapshot
 // EXRs, SSIM/MSE plots against spp and seconds, crops at the smallest spp side by side,
 // and DIR/summary.md. Bad arguments: one line on stderr, exit 2.
 #include <algorithm>
@@ -57,6 +58,13 @@ int main(int argc, char** argv) {
     app.add_option("--height", o.height, "image height (default: the scene's)");
     app.add_option("--threads", o.threads, "worker threads (0: all)")->capture_default_str();
     app.add_option("--nthold", o.nthold, "relaxation length N_thold")->capture_default_str();
+    app.add_option("--sampler", o.sampler, "sampler of every preset's renders: independent, sobol or zsobol")
+        ->check(CLI::IsMember({"independent", "sobol", "zsobol"}))
+        ->capture_default_str();
+    app.add_option("--reference-sampler", o.reference_sampler,
+                   "sampler of the reference (default: --sampler; give the same one to compare runs with different "
+                   "--sampler against one reference)")
+        ->check(CLI::IsMember({"independent", "sobol", "zsobol"}));
     app.add_option("--cache", cache, "reference cache directory (default ~/.cache/iris)");
     app.add_option("--crop", o.crop, "crop rectangle x,y,w,h for the side-by-side PNG (default: the centre)");
     app.add_option("-o,--output", out, "output directory")->required();

@@ -48,9 +48,10 @@ grouped group(const std::vector<ablation_row>& rows, bool by_budget) {
 void write_csv(const fs::path& path, const std::vector<ablation_row>& rows, bool with_budget) {
     exr::write_atomically(path, [&](const fs::path& tmp) {
         std::ofstream o(tmp);
-        o << "scene,preset,seed,spp,seconds,mse,relmse,ssim" << (with_budget ? ",budget" : "") << "\n";
+        o << "scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim" << (with_budget ? ",budget" : "") << "\n";
         for (const auto& r : rows) {
-            o << fmt::format("{},{},{},{},{:.6f},{:.9g},{:.9g},{:.9g}", r.scene, r.preset, r.seed, r.spp, r.seconds,
+            o << fmt::format("{},{},{},{},{},{:.6f},{:.9g},{:.9g},{:.9g}", r.scene, r.preset, r.sampler, r.seed, r.spp,
+                             r.seconds,
                              r.mse, r.relmse, r.ssim);
             if (with_budget) o << fmt::format(",{:g}", r.budget);
             o << "\n";
@@ -136,9 +137,11 @@ void write_report(const ablation_options& opt, const ablation_result& r) {
 
     // summary.md
     std::string md = fmt::format("# Ablation: {}\n\n", scene);
-    md += fmt::format("Reference: `hwss`, {} spp. Seeds: {}. Size: {}x{}. N_thold = {}. "
-                      "Mean ± standard deviation over seeds; gain = SSIM relative to `hwss` at the same spp.\n\n",
-                      opt.reference_spp, opt.seeds, r.reference.width(), r.reference.height(), opt.nthold);
+    md += fmt::format("Reference: `hwss`, {} spp, sampler `{}`. Sampler of the renders: `{}`. Seeds: {}. Size: {}x{}. "
+                      "N_thold = {}. Mean ± standard deviation over seeds; gain = SSIM relative to `hwss` at the same "
+                      "spp.\n\n",
+                      opt.reference_spp, opt.ref_sampler(), opt.sampler, opt.seeds, r.reference.width(),
+                      r.reference.height(), opt.nthold);
     md += "| spp | preset | SSIM | SSIM gain vs hwss | MSE | MSE vs hwss | relMSE | seconds |\n|---|---|---|---|---|---|---|---|\n";
     for (int spp : opt.spp) {
         const auto base_it = by_spp.find("hwss");

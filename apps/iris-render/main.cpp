@@ -3,7 +3,7 @@
 //   iris-render SCENE|FILE --preset NAME --spp N -o OUT.exr
 //       [--threads T=all] [--seed S=1] [--nthold N=512] [--width W --height H (scene's)]
 //       [--png OUT.png] [--stats OUT.json] [--every K=0 (spp)] [--every-seconds T=0]
-//       [--half] [--max-depth D=32]
+//       [--half] [--max-depth D=32] [--sampler independent|sobol|zsobol]
 //   iris-render --list-presets | --list-scenes
 //
 // The image is rewritten atomically every K samples / T seconds and at the end, so a
@@ -42,7 +42,8 @@ extern "C" void on_sigint(int) { g_interrupted.store(true); }
 namespace fs = std::filesystem;
 
 struct args {
-    std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis";
+    std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis",
+                sampler = "independent";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
     double every_seconds = 0.0;
     std::uint64_t seed = 1;
@@ -83,6 +84,7 @@ iris::exr::metadata metadata(const iris::scene_desc& s, const args& a, const iri
             {"iris:preset", a.preset},
             {"iris:config", st.config_name},
             {"iris:estimator", st.estimator},
+            {"iris:sampler", st.sampler},
             {"iris:spp", std::to_string(st.spp_done)},
             {"iris:seconds", fmt::format("{:.3f}", st.seconds)},
             {"iris:seed", std::to_string(a.seed)},
@@ -109,6 +111,7 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
                         {"threads", st.threads},
                         {"threads_used", st.threads_used},
                         {"isa", st.isa},
+                        {"sampler", st.sampler},
                         {"seed", a.seed},
                         {"nthold", a.nthold},
                         {"seconds", st.seconds},
@@ -169,6 +172,7 @@ int run_render(const args& a) {
     opt.path.max_depth = a.max_depth;
     opt.isa = a.isa;
     opt.estimator = a.estimator;
+    opt.sampler = a.sampler;
 
     std::signal(SIGINT, on_sigint);
     const bool tty = ::isatty(STDERR_FILENO) != 0;
@@ -252,6 +256,12 @@ int main(int argc, char** argv) {
                    "sampling at one uniform wavelength, no light sampling: the independent check of nee-mis; the "
                    "preset is not used)")
         ->check(CLI::IsMember({"nee-mis", "bsdf-only"}))
+        ->capture_default_str();
+    app.add_option("--sampler", a.sampler,
+                   "where each pixel's random numbers come from: independent (a hash per number), sobol "
+                   "(Owen-scrambled Sobol' points, per pixel) or zsobol (the same, Morton-ordered over the image: "
+                   "blue-noise error)")
+        ->check(CLI::IsMember({"independent", "sobol", "zsobol"}))
         ->capture_default_str();
     app.add_flag("--half", a.half, "write half-float EXR (default float)");
     app.add_flag("--list-presets", a.list_presets, "list the sampling presets and exit");

@@ -103,4 +103,29 @@ inline scene_desc furnace_with_glass(double albedo, ior_model ior, float roughne
     return s;
 }
 
+/// \brief A diffuse floor (albedo 0.5, 6 × 6) lit from 0.8 above by a small one-sided square
+/// lamp (0.4 × 0.4, flat spectrum), seen from the side: direct light on a smooth, caustic-free
+/// integrand, for the samplers' convergence test. The lamp is outside the view.
+inline scene_desc lit_floor() {
+    scene_desc s;
+    s.name = "test-lit-floor";
+    s.camera = {{0.0f, 0.6f, 1.6f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 40.0f, 8, 8};
+    s.materials.push_back(material::diffuse{flat(0.5)});
+    s.material_names.push_back("floor");
+    const auto e = flat(1.0);
+    s.emitters.push_back({"lamp", e.scaled(10.0 * white_normalisation(e)), false});
+    auto quad = [](float half, float y, bool down) {
+        triangle_mesh m;
+        m.positions = {{-half, y, -half}, {-half, y, half}, {half, y, half}, {half, y, -half}};
+        if (down)
+            m.triangles = {{0, 2, 1}, {0, 3, 2}};  // normal −y
+        else
+            m.triangles = {{0, 1, 2}, {0, 2, 3}};  // normal +y
+        return m;
+    };
+    s.shapes.push_back({"floor", quad(3.0f, 0.0f, false), 0, std::nullopt});
+    s.shapes.push_back({"lamp", quad(0.2f, 0.8f, true), 0, 0u});
+    return s;
+}
+
 }  // namespace iris::test

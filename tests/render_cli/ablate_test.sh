@@ -37,7 +37,7 @@ grep -q "^reference: 256 spp in .*, cached as " "$work/stderr.txt" || fail "the 
 csv=$out/results.csv
 [ -f "$csv" ] || fail "results.csv not written"
 header=$(head -n 1 "$csv")
-[ "$header" = "scene,preset,seed,spp,seconds,mse,relmse,ssim" ] || fail "results.csv header is '$header'"
+[ "$header" = "scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim" ] || fail "results.csv header is '$header'"
 rows=$(($(wc -l <"$csv") - 1))
 [ "$rows" -eq 12 ] || fail "results.csv has $rows rows, expected 2 presets x 2 seeds x 3 spp = 12"
 
@@ -45,15 +45,16 @@ awk -F, '
   function bad(msg) { print "results.csv: " msg > "/dev/stderr"; failed = 1 }
   NR == 1 { next }
   {
-    if (NF != 8) bad("line " NR " has " NF " fields")
+    if (NF != 9) bad("line " NR " has " NF " fields")
     if ($1 != "furnace") bad("line " NR ": scene " $1)
-    if (seen[$2 "," $3 "," $4]++) bad("duplicate row " $2 " seed " $3 " spp " $4)
-    for (f = 5; f <= 8; ++f)
+    if ($3 != "independent") bad("line " NR ": sampler " $3)
+    if (seen[$2 "," $4 "," $5]++) bad("duplicate row " $2 " seed " $4 " spp " $5)
+    for (f = 6; f <= 9; ++f)
       if ($f !~ /^[0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?$/) bad("line " NR ": field " f " is not a finite number: " $f)
-    if (!($6 > 0)) bad("line " NR ": mse " $6 " is not > 0")
-    if (!($8 <= 1)) bad("line " NR ": ssim " $8 " > 1")
-    sum[$2 "," $4] += $6
-    n[$2 "," $4]++
+    if (!($7 > 0)) bad("line " NR ": mse " $7 " is not > 0")
+    if (!($9 <= 1)) bad("line " NR ": ssim " $9 " > 1")
+    sum[$2 "," $5] += $7
+    n[$2 "," $5]++
   }
   END {
     np = split("hwss paper", preset, " ")
@@ -96,11 +97,11 @@ leftovers=$(find "$work" -name '*.tmp-*')
 [ -z "$leftovers" ] || fail "temporary files left: $leftovers"
 
 # ---- second run: the cached reference gives the same metrics (all but the seconds column)
-cut -d, -f1-4,6-8 "$csv" >"$work/metrics_first.csv"
+cut -d, -f1-5,7-9 "$csv" >"$work/metrics_first.csv"
 run
 status=$?
 [ "$status" -eq 0 ] || fail "second run: exit status $status"
 grep -q "^reference: .* (cached)$" "$work/stderr.txt" || fail "second run: the cached reference was not used"
-cut -d, -f1-4,6-8 "$csv" | cmp -s - "$work/metrics_first.csv" ||
-  fail "second run (cached reference) gives other metrics: $(cut -d, -f1-4,6-8 "$csv" | diff "$work/metrics_first.csv" -)"
+cut -d, -f1-5,7-9 "$csv" | cmp -s - "$work/metrics_first.csv" ||
+  fail "second run (cached reference) gives other metrics: $(cut -d, -f1-5,7-9 "$csv" | diff "$work/metrics_first.csv" -)"
 echo "ok"

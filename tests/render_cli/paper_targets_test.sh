@@ -16,7 +16,7 @@ rm -rf "$work/out" && mkdir -p "$work" || fail "cannot create $work"
   --cache "$work/cache" -o "$work/out" >"$work/stdout.txt" 2>"$work/stderr.txt" || fail "iris-ablate exited $?"
 csv=$work/out/results.csv
 [ -f "$csv" ] || fail "no results.csv"
-awk -F, 'NR > 1 && $4 == 16 { ssim[$2] += $8; mse[$2] += $6; n[$2]++ }
+awk -F, 'NR > 1 && $5 == 16 { ssim[$2] += $9; mse[$2] += $7; n[$2]++ }
   END {
     if (n["hwss"] != 3 || n["paper"] != 3) { print "expected 3 rows per preset" > "/dev/stderr"; exit 1 }
     gain = ssim["paper"] / ssim["hwss"] - 1; ratio = mse["paper"] / mse["hwss"]

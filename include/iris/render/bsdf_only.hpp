@@ -81,7 +81,9 @@ public:
             }
             if (depth >= m_settings.max_depth) break;
             const material_desc& mat = m_scene.materials[shape.material];
-            const auto bs = bsdf_sample_hero(mat, n, wo, wl, rng.next(), rng.next2());
+            const glm::vec2 u_dir = rng.next2();  // drawn in this order since the first release
+            const float u_lobe = rng.next();
+            const auto bs = bsdf_sample_hero(mat, n, wo, wl, u_lobe, u_dir);
             if (!bs || !(bs->pdf[0] > 0.0f)) break;
             beta *= bs->f_cos[0] / bs->pdf[0];
             if (!(beta > 0.0f)) break;

@@ -104,6 +104,7 @@ public:
         hero_path hp;
 
         for (int depth = 0;; ++depth) {
+            rng.start_bounce(depth);  // the bounce's slots (random.hpp), whatever was skipped before
             const auto hit = tracer.intersect(origin, dir, std::numeric_limits<float>::infinity());
             ++out.rays;
             if (!hit) {
@@ -233,7 +234,9 @@ private:
                     const sampled_spectra<C>& hero, hero_path& hp, Prop& bterm, sample_stream& rng,
                     path_sample& out) const noexcept {
         if (m_lights.empty()) return;
-        const auto ls = m_lights.sample(rng.next(), rng.next2());
+        const glm::vec2 u_point = rng.next2();  // slots in the order of random.hpp's layout
+        const float u_choice = rng.next();
+        const auto ls = m_lights.sample(u_choice, u_point);
         if (!ls) return;
         const glm::vec3 to_light = ls->point.p - vx.sp.p;
         const float d2 = glm::dot(to_light, to_light);

@@ -26,7 +26,7 @@ namespace iris::renderer::detail {
 struct tile_job {
     int x0, y0, x1, y1;  ///< pixels [x0, x1) × [y0, y1)
     int width;           ///< of the image (pixel index = y · width + x)
-    std::uint64_t seed;
+    sampler_setup sampler;
     std::uint64_t sample;
 };
 
@@ -40,7 +40,7 @@ inline std::uint64_t tile_body(const Integrator& integ, const Tracer& tracer, co
         for (int x = job.x0; x < job.x1; ++x) {
             const auto pixel = static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(job.width) +
                                static_cast<std::uint64_t>(x);
-            sample_stream rng(job.seed, pixel, job.sample);
+            sample_stream rng(job.sampler, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), pixel, job.sample);
             const glm::vec3 d = cam.direction(x, y, rng.next2());
             const path_sample s = integ.trace(tracer, cam.origin(), d, dist, alpha, rng);
             f.add(static_cast<std::size_t>(pixel), s.value);
@@ -108,6 +108,8 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
     const int ts = std::max(1, opt.tile_size);
     const int tiles_x = (w + ts - 1) / ts, tiles_y = (ht + ts - 1) / ts;
     const int tiles = tiles_x * tiles_y;
+    const sampler_setup sampler =
+        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
     std::vector<std::uint64_t> tile_rays(static_cast<std::size_t>(tiles));
     std::atomic<std::uint64_t> used{0};  // arena slots that rendered a tile (slots ≥ 64 share bit 63)
     tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::info::default_concurrency());
@@ -127,9 +129,10 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
             tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
                 const int slot = tbb::this_task_arena::current_thread_index();
                 used.fetch_or(std::uint64_t{1} << std::clamp(slot, 0, 63), std::memory_order_relaxed);
+                if (h.on_tile) h.on_tile(slot);
                 for (int t = r.begin(); t != r.end(); ++t) {
                     const int x0 = (t % tiles_x) * ts, y0 = (t / tiles_x) * ts;
-                    const tile_job job{x0, y0, std::min(x0 + ts, w), std::min(y0 + ts, ht), w, opt.seed,
+                    const tile_job job{x0, y0, std::min(x0 + ts, w), std::min(y0 + ts, ht), w, sampler,
                                        static_cast<std::uint64_t>(i)};
                     tile_rays[static_cast<std::size_t>(t)] = tile(integ, tracer, cam, job, dist, alpha, f);
                 }

@@ -84,6 +84,8 @@ void validate(const options& o) {
     if (o.path.max_depth < 1) throw std::invalid_argument("max depth must be >= 1");
     if (o.estimator != "nee-mis" && o.estimator != "bsdf-only")
         throw std::invalid_argument(fmt::format("unknown estimator '{}' (expected nee-mis or bsdf-only)", o.estimator));
+    if (!parse_sampler(o.sampler))
+        throw std::invalid_argument(fmt::format("unknown sampler '{}' (expected independent, sobol or zsobol)", o.sampler));
 }
 
 }  // namespace
@@ -110,6 +112,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.height = ht;
     st.spp_total = opt.spp;
     st.isa = isa_names[static_cast<std::size_t>(chosen)];
+    st.sampler = opt.sampler;
     const render_fn fn = find_render(opt.estimator, opt.preset, chosen);
     fn(detail::render_job{scene, tracer, opt, out, st, h});
     return st;

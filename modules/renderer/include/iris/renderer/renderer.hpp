@@ -40,6 +40,9 @@ struct options {
     /// "bsdf-only" (`bsdf_only_integrator`, iris/render/bsdf_only.hpp: pure BSDF sampling
     /// at one uniform wavelength, the independent check; the preset is then not used).
     std::string estimator = "nee-mis";
+    /// \brief Where a pixel's random numbers come from: "independent", "sobol" or "zsobol"
+    /// (iris/render/random.hpp: the samplers and their dimension layout).
+    std::string sampler = "independent";
 };
 
 /// \brief Where a render is: passed to the hooks and returned at the end.
@@ -47,6 +50,7 @@ struct status {
     std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"; "bsdf-only" for that estimator
     std::string estimator;         ///< "nee-mis" or "bsdf-only"
     std::string isa;               ///< instruction set the hot loop ran with
+    std::string sampler;           ///< "independent", "sobol" or "zsobol"
     int width = 0, height = 0;
     int threads = 0;               ///< worker threads the render may use (its arena's size)
     int threads_used = 0;          ///< of those, how many rendered at least one tile
@@ -65,6 +69,10 @@ struct hooks {
     std::function<bool(const film&, const status&)> on_pass;
     /// \brief Checked between passes; a set flag stops the render after the current pass.
     const std::atomic<bool>* cancel = nullptr;
+    /// \brief Before every chunk of tiles a thread takes, with that thread's arena slot (0 is
+    /// the thread that called render). For tests that must see tiles spread over threads;
+    /// it runs on the rendering threads, so it must be thread-safe.
+    std::function<void(int slot)> on_tile;
 };
 
 /// \brief Render `scene` progressively into a new film. \throws std::invalid_argument for
