@@ -159,6 +159,9 @@ TEST(Sobol, BuildingBlocks) {
     // dimension 1's first points: 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8
     const double want[] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
     for (std::uint32_t i = 0; i < 8; ++i) EXPECT_EQ(dimension1(i) * 0x1.0p-32, want[i]) << i;
+    // the byte tables are the column definition
+    for (std::uint32_t i : {0u, 1u, 255u, 256u, 0x12345678u, 0xdeadbeefu, 0xffffffffu})
+        EXPECT_EQ(dimension1(i), dimension1_by_columns(i)) << i;
     for (std::uint32_t seed : {0u, 1u, 0xdeadbeefu}) {
         std::set<std::uint32_t> first16;
         for (std::uint32_t i = 0; i < 16; ++i) first16.insert(shuffle_index(i, seed) >> 4);

@@ -40,13 +40,33 @@ constexpr std::uint32_t reverse_bits(std::uint32_t v) noexcept {
 /// \brief Sobol' dimension 0 of point `i` as 32-bit fixed point (value = result · 2⁻³²).
 constexpr std::uint32_t dimension0(std::uint32_t i) noexcept { return reverse_bits(i); }
 
-/// \brief Sobol' dimension 1 of point `i` as 32-bit fixed point: the XOR of the generator
-/// columns v_k of the set bits k of i.
-constexpr std::uint32_t dimension1(std::uint32_t i) noexcept {
+/// \brief Sobol' dimension 1 of point `i` by its definition: the XOR of the generator
+/// columns v_k of the set bits k of i (v₁ = 2³¹, v_k = v_{k−1} ⊕ (v_{k−1} ≫ 1)).
+constexpr std::uint32_t dimension1_by_columns(std::uint32_t i) noexcept {
     std::uint32_t x = 0, v = 0x80000000u;
     for (; i != 0; i >>= 1, v ^= v >> 1)
         if (i & 1u) x ^= v;
     return x;
+}
+
+namespace detail {
+/// \brief The generator is linear over GF(2): the XOR of the images of i's four bytes,
+/// each from a 256-entry table (4 KiB, built at compile time). Shuffled indices have all
+/// 32 bits in play, so the column loop would run 32 times per point.
+struct dimension1_tables {
+    std::uint32_t t[4][256] = {};
+    constexpr dimension1_tables() {
+        for (std::uint32_t b = 0; b < 4; ++b)
+            for (std::uint32_t v = 0; v < 256; ++v) t[b][v] = dimension1_by_columns(v << (8 * b));
+    }
+};
+inline constexpr dimension1_tables dimension1_table{};
+}  // namespace detail
+
+/// \brief Sobol' dimension 1 of point `i` as 32-bit fixed point.
+constexpr std::uint32_t dimension1(std::uint32_t i) noexcept {
+    const auto& t = detail::dimension1_table.t;
+    return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
 }
 
 /// \brief Laine–Karras hash: bit k of the result depends only on bits 0…k of x (and the
