@@ -4,6 +4,8 @@
 //   BM_rebuild_distribution<kernel/base>   building p_α for a new α (once per pass)
 //   BM_restriction<kernel>          one r_α(λ) (the B term evaluates it once per bin)
 //   BM_mis_weight_c4                one HWSS MIS weight over 4 path pdfs
+//   BM_sample_stream<sampler>       the numbers of one camera sample of a 4-bounce path with
+//                                   next-event estimation (24 numbers in 15 slots, random.hpp)
 // Targets: a 4-wavelength restricted draw ≤ 30 ns and ≤ 2× the unrestricted (`hwss`) draw
 // of the same run; a rebuild ≤ 20 µs.
 #include <benchmark/benchmark.h>
@@ -11,6 +13,7 @@
 #include <array>
 #include <string>
 
+#include <iris/render/random.hpp>
 #include <iris/sampling/sampling.hpp>
 #include <iris/spectrum/named.hpp>
 
@@ -65,6 +68,34 @@ void BM_mis_weight_c4(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(iris::hwss_mis_weight(0.001f + u[i++ & 4095], path));
 }
 BENCHMARK(BM_mis_weight_c4);
+
+/// \brief What a sampler costs per camera sample, apart from the rest of the render: the
+/// slots of a 4-bounce diffuse path with next-event estimation (pixel, hero u, then per
+/// bounce light point, light choice, lobe, BSDF direction, roulette) for the pixels of a
+/// 64 × 64 image, one sample index per pass.
+void BM_sample_stream(benchmark::State& state) {
+    const auto kind = static_cast<iris::sampler_kind>(state.range(0));
+    const auto setup = iris::sampler_setup::make(kind, 7, 64);
+    std::uint32_t x = 0, y = 0, sample = 0;
+    for (auto _ : state) {
+        iris::sample_stream s(setup, x, y, std::uint64_t{y} * 64 + x, sample);
+        float acc = s.next2().x + s.next();
+        for (int k = 0; k < 4; ++k) {
+            s.start_bounce(k);
+            const glm::vec2 p = s.next2();
+            acc += p.x + p.y + s.next() + s.next();
+            const glm::vec2 d = s.next2();
+            acc += d.x + d.y + s.next();
+        }
+        benchmark::DoNotOptimize(acc);
+        if (++x == 64) {
+            x = 0;
+            if (++y == 64) y = 0, ++sample;
+        }
+    }
+    state.SetLabel(std::string(iris::sampler_name(kind)));
+}
+BENCHMARK(BM_sample_stream)->DenseRange(0, 2);
 
 const int registered = [] {
     iris::for_each_preset([]<class P>() {

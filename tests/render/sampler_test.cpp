@@ -170,6 +170,15 @@ TEST(Sobol, BuildingBlocks) {
         for (std::uint64_t i = 0; i < 32; ++i) first32.insert(shuffle_index64((7ull << 40) + i, seed) >> 5);
         EXPECT_EQ(first32.size(), 1u);
     }
+    // the reversals that cancel: the short form is the long one
+    for (std::uint32_t i : {0u, 1u, 7u, 1000u, 0xfffffu})
+        for (std::uint32_t a : {0u, 0x9e3779b9u})
+            for (std::uint32_t b : {5u, 0x85ebca6bu}) {
+                const auto p = shuffled_dimension0(reverse_bits(i), a, b);
+                EXPECT_EQ(p.index, shuffle_index(i, a));
+                EXPECT_EQ(p.value, owen_scramble(dimension0(shuffle_index(i, a)), b));
+                EXPECT_EQ(scrambled_dimension1(i, b), owen_scramble(dimension1(i), b));
+            }
     EXPECT_EQ(morton2(1, 0), 1u);
     EXPECT_EQ(morton2(0, 1), 2u);
     EXPECT_EQ(morton2(3, 3), 15u);

@@ -91,7 +91,7 @@ public:
                             std::uint64_t sample) noexcept
         : m_rng(s.seed, pixel, sample), m_kind(s.kind) {
         if (m_kind == sampler_kind::sobol) {
-            m_index = sample;
+            m_index = sobol::reverse_bits(static_cast<std::uint32_t>(sample));  // reversed once (at())
             m_key = detail::counter_hash(detail::counter_hash(s.seed ^ 0x50b01ull) ^ pixel);
         } else if (m_kind == sampler_kind::zsobol) {
             m_index = (static_cast<std::uint64_t>(sobol::morton2(x, y)) << s.log2_spp) + sample;
@@ -132,31 +132,38 @@ private:
         float x, y;
     };
     /// \brief Slot `slot`'s point: this sample's index shuffled for the slot, its Sobol'
-    /// dimensions 0 (and 1) Owen-scrambled for the slot.
+    /// dimensions 0 (and 1) Owen-scrambled for the slot — for `sobol`,
+    /// owen_scramble(dimension0(shuffle_index(sample, a)), b), computed from the sample
+    /// index the stream reversed once (`sobol::shuffled_dimension0`: the reversals in
+    /// between cancel).
     constexpr point at(std::uint32_t slot, bool two) const noexcept {
         const std::uint64_t h = detail::counter_hash(m_key + slot);
-        std::uint32_t i;
+        std::uint32_t i, x;
         std::uint64_t scramble;
         if (m_kind == sampler_kind::sobol) {
-            i = sobol::shuffle_index(static_cast<std::uint32_t>(m_index), static_cast<std::uint32_t>(h));
             scramble = h >> 32;
+            const auto p = sobol::shuffled_dimension0(static_cast<std::uint32_t>(m_index), static_cast<std::uint32_t>(h),
+                                                      static_cast<std::uint32_t>(scramble));
+            i = p.index;
+            x = p.value;
         } else {
             // bits of the Morton index past 32 do not reach a 32-bit point: they key the
             // scrambling instead, so far-apart image blocks do not repeat one pattern
             const std::uint64_t z = sobol::shuffle_index64(m_index, h);
             i = static_cast<std::uint32_t>(z);
             scramble = detail::counter_hash(h ^ (z >> 32));
+            x = sobol::owen_scramble(sobol::dimension0(i), static_cast<std::uint32_t>(scramble));
         }
-        const float a = sobol::to_unit(sobol::owen_scramble(sobol::dimension0(i), static_cast<std::uint32_t>(scramble)));
+        const float a = sobol::to_unit(x);
         if (!two) return {a, 0.0f};
-        const auto seed_b = static_cast<std::uint32_t>(two ? detail::counter_hash(scramble) : 0);
-        return {a, sobol::to_unit(sobol::owen_scramble(sobol::dimension1(i), seed_b))};
+        const auto seed_b = static_cast<std::uint32_t>(detail::counter_hash(scramble));
+        return {a, sobol::to_unit(sobol::scrambled_dimension1(i, seed_b))};
     }
 
     counter_rng m_rng;
     sampler_kind m_kind = sampler_kind::independent;
     std::uint32_t m_slot = 0;
-    std::uint64_t m_index = 0;
+    std::uint64_t m_index = 0;  ///< sobol: the sample index bit-reversed; zsobol: the Morton-ordered index
     std::uint64_t m_key = 0;
 };
 

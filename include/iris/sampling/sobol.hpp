@@ -28,13 +28,12 @@
 
 namespace iris::sobol {
 
-/// \brief The 32 bits of v in reverse order.
+/// \brief The 32 bits of v in reverse order (a byte swap, then the bits of each byte).
 constexpr std::uint32_t reverse_bits(std::uint32_t v) noexcept {
-    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
-    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = __builtin_bswap32(v);
     v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
-    v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
-    return (v >> 16) | (v << 16);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    return ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
 }
 
 /// \brief Sobol' dimension 0 of point `i` as 32-bit fixed point (value = result · 2⁻³²).
@@ -55,9 +54,13 @@ namespace detail {
 /// 32 bits in play, so the column loop would run 32 times per point.
 struct dimension1_tables {
     std::uint32_t t[4][256] = {};
+    std::uint32_t reversed[4][256] = {};  ///< the same, bit-reversed (reversal is linear too)
     constexpr dimension1_tables() {
         for (std::uint32_t b = 0; b < 4; ++b)
-            for (std::uint32_t v = 0; v < 256; ++v) t[b][v] = dimension1_by_columns(v << (8 * b));
+            for (std::uint32_t v = 0; v < 256; ++v) {
+                t[b][v] = dimension1_by_columns(v << (8 * b));
+                reversed[b][v] = reverse_bits(t[b][v]);
+            }
     }
 };
 inline constexpr dimension1_tables dimension1_table{};
@@ -90,6 +93,25 @@ constexpr std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) noexc
 /// aligned block of 2^m indices (bit k of i is flipped by a hash of the bits above it).
 constexpr std::uint32_t shuffle_index(std::uint32_t i, std::uint32_t seed) noexcept {
     return owen_scramble(i, seed);  // the same nested scramble: bits above decide
+}
+
+/// \brief `owen_scramble(dimension1(i), c)` without the reversal that cancels:
+/// reverse(LK_c(reverse(dimension1(i)))), the inner reversal read from the reversed tables.
+constexpr std::uint32_t scrambled_dimension1(std::uint32_t i, std::uint32_t c) noexcept {
+    const auto& t = detail::dimension1_table.reversed;
+    return reverse_bits(laine_karras(t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24], c));
+}
+
+/// \brief `owen_scramble(dimension0(shuffle_index(i, a)), b)` with the bit reversals that
+/// cancel left out, from r = reverse_bits(i): the shuffled index is reverse(LK_a(r)), its
+/// dimension 0 is LK_a(r), and the scramble of that is reverse(LK_b(reverse(LK_a(r)))).
+/// Also returns the shuffled index (for dimension 1).
+struct scrambled_point0 {
+    std::uint32_t value, index;
+};
+constexpr scrambled_point0 shuffled_dimension0(std::uint32_t reversed_index, std::uint32_t a, std::uint32_t b) noexcept {
+    const std::uint32_t index = reverse_bits(laine_karras(reversed_index, a));
+    return {reverse_bits(laine_karras(index, b)), index};
 }
 
 /// \brief 64-bit variant of `shuffle_index` for Morton-ordered indices (ZSobol): a
