@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Reproduce docs/results.md: the paper's table (paper vs hwss) on falling-cubes,
 # falling-cubes-led and rubik, the ablation over all presets on falling-cubes, the
-# N_thold = 128 run, the bias maps and a time-equal run. Each ablation writes
+# N_thold = 128 run, the bias maps, a time-equal run and the samplers' evaluation
+# (scripts/results_samplers.sh). Each ablation writes
 # DIR/{results.csv,summary.md,*.png,snapshots/}; the small outputs are copied to
 # docs/results/<name>/. Needs a release build (README command 2).
 # Wall-clock on the 2-core CI machine: about 45 min (two single-threaded ablations at a
@@ -50,3 +51,7 @@ mkdir -p docs/results/falling-cubes-time
 cp "$out/falling-cubes-time"/{results.csv,results_time.csv,summary.md,ssim_vs_seconds.png,mse_vs_seconds.png} \
   docs/results/falling-cubes-time/
 echo "copied to docs/results/"
+
+# issue 12: the same evaluation with each sampler, one zsobol reference per scene, its noise
+# ceiling, time-equal on falling-cubes (about 35 min more; docs/results/samplers.md)
+bash scripts/results_samplers.sh "$out/samplers"

@@ -34,7 +34,7 @@ for entry in "falling-cubes 160 120" "falling-cubes-led 160 120" "rubik 128 128"
 done
 
 # time-equal on falling-cubes: both cores, nothing else running
-for sampler in independent zsobol; do
+for sampler in independent sobol zsobol; do
   "$ablate" falling-cubes --presets hwss,paper --sampler "$sampler" --reference-sampler zsobol \
     --reference-spp "$ref_spp" --spp 16 --time-budgets 0.5,1,2,4 --seeds 3 --width 160 --height 120 --threads 2 \
     --cache "$out/cache" -o "$out/falling-cubes-time-$sampler"

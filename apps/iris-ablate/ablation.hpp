@@ -25,7 +25,7 @@ struct ablation_options {
     std::filesystem::path out;
     std::filesystem::path cache;
     std::string crop;  ///< "x,y,w,h"; empty: the centre
-    std::string sampler = "independent";  ///< of every preset's renders
+    std::string sampler = "sobol";  ///< of every preset's renders
     std::string reference_sampler;         ///< of the reference; empty: `sampler`
     const std::string& ref_sampler() const { return reference_sampler.empty() ? sampler : reference_sampler; }
 };

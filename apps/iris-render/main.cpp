@@ -43,7 +43,7 @@ namespace fs = std::filesystem;
 
 struct args {
     std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis",
-                sampler = "independent";
+                sampler = "sobol";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
     double every_seconds = 0.0;
     std::uint64_t seed = 1;

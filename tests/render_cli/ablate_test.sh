@@ -47,7 +47,7 @@ awk -F, '
   {
     if (NF != 9) bad("line " NR " has " NF " fields")
     if ($1 != "furnace") bad("line " NR ": scene " $1)
-    if ($3 != "independent") bad("line " NR ": sampler " $3)
+    if ($3 != "sobol") bad("line " NR ": sampler " $3 " (the default is sobol)")
     if (seen[$2 "," $4 "," $5]++) bad("duplicate row " $2 " seed " $4 " spp " $5)
     for (f = 6; f <= 9; ++f)
       if ($f !~ /^[0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?$/) bad("line " NR ": field " f " is not a finite number: " $f)

@@ -32,6 +32,16 @@
 ///
 /// A pixel's first 2^m samples are a (0, m, 2)-net in every 2-D slot and one point per
 /// stratum of width 2^-m in every 1-D slot, for both Sobol' samplers (tests/render/sampler_test.cpp).
+///
+/// **Relaxation and stratification.** Slot 1 stratifies the hero's u over a pixel's samples,
+/// but sample i maps its u through the inverse CDF of p_α with α = curve(i / N_thold), which
+/// changes with i. The wavelengths are therefore stratified exactly only once α has reached 1
+/// (or for `hwss`, whose p_α does not change); while α grows, 2^m consecutive samples see 2^m
+/// slightly different maps, and the strata in λ overlap by how much the CDF moves over them
+/// (for the linear curve and 512 samples, at most 2^m / 512 of the way from p_0 to p_1). The
+/// B term's jitter (slot 2) is stratified the same way over the bins. docs/results.md measures
+/// what this costs: `paper`'s error with a Sobol' sampler relative to independent sampling,
+/// against the same ratio for `hwss`.
 /// Any spp works; `zsobol` supports images up to 65 536 pixels on a side and 2³² spp.
 
 #include <algorithm>
