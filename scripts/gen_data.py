@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Convert the CSV tables in data/ into constexpr C++ headers in include/iris/spectrum/data/.
+"""Convert the tables in data/ into constexpr C++ headers in include/iris/spectrum/data/
+(and the Sobol' direction numbers into include/iris/sampling/data/).
 
 The generated headers are committed, so building iris never needs Python or the CSVs.
 Run again (``python3 scripts/gen_data.py``) only when a CSV changes; the numbers are
@@ -76,8 +77,34 @@ def glass_header():
     (OUT / "glass.hpp").write_text(text)
 
 
+def sobol_header():
+    """Joe & Kuo's rows (d, s, a, m_1..m_s), copied verbatim into constexpr rows."""
+    src = "sobol_joe_kuo_6_256.txt"
+    lines = (DATA / src).read_text().split("\n")
+    assert lines[0].split() == ["d", "s", "a", "m_i"]
+    rows = [l.split() for l in lines[1:] if l.strip()]
+    width = max(int(r[1]) for r in rows)
+    text = HEADER.format(src=src).replace("#include <array>\n", "#include <array>\n#include <cstdint>\n")
+    licence = (DATA / "sobol_joe_kuo_LICENSE.txt").read_text().rstrip("\n").split("\n")
+    text += "\n".join(("// " + l).rstrip() for l in licence) + "\n\n"
+    text += "namespace iris::data::sobol_joe_kuo {\n\n"
+    text += ("/// One row of new-joe-kuo-6.21201: dimension d (1-based; d = 1 is the van der Corput\n"
+             "/// sequence and has no row), degree s of the primitive polynomial, its inner\n"
+             "/// coefficients a, and the initial direction numbers m_1 ... m_s.\n"
+             f"struct row {{\n    std::uint16_t d, s;\n    std::uint32_t a;\n    std::array<std::uint32_t, {width}> m;\n}};\n\n")
+    text += f"inline constexpr std::array<row, {len(rows)}> rows = {{{{\n"
+    for r in rows:
+        assert int(r[1]) == len(r) - 3
+        text += f"    {{{r[0]}, {r[1]}, {r[2]}, {{{', '.join(r[3:])}}}}},\n"
+    text += "}};\n\n}  // namespace iris::data::sobol_joe_kuo\n"
+    out = ROOT / "include" / "iris" / "sampling" / "data"
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "sobol_joe_kuo.hpp").write_text(text)
+
+
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
+    sobol_header()
     spectral_header("cie1931_2deg_xyz_cmf.csv", "cie1931.hpp", "cie1931",
                     [("x_bar", "x_bar"), ("y_bar", "y_bar"), ("z_bar", "z_bar")])
     spectral_header("cie_d65.csv", "cie_d65.hpp", "cie_d65", [("value", "values")])

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -65,7 +66,9 @@ constexpr slot_kind layout[] = {{0, true, "pixel jitter"},     {1, false, "hero 
                                 {4, false, "bounce 0 light choice"}, {5, false, "bounce 0 lobe"},
                                 {6, true, "bounce 0 BSDF direction"}, {7, false, "bounce 0 roulette"},
                                 {8, true, "bounce 1 light point"},    {11, true, "bounce 1 BSDF direction"},
-                                {3 + 5 * 20, true, "bounce 20 light point"}};
+                                {3 + 5 * 20, true, "bounce 20 light point"},
+                                {iris::sobol::dimensions + 40, true, "a 2-D slot past the table (padded)"},
+                                {iris::sobol::dimensions + 41, false, "a 1-D slot past the table (padded)"}};
 
 TEST(Sampler, SobolSamplersPutAPixelsFirstTwoToTheMSamplesInANetInEverySlot) {
     for (auto k : {sampler_kind::sobol, sampler_kind::zsobol})
@@ -170,19 +173,126 @@ TEST(Sobol, BuildingBlocks) {
         for (std::uint64_t i = 0; i < 32; ++i) first32.insert(shuffle_index64((7ull << 40) + i, seed) >> 5);
         EXPECT_EQ(first32.size(), 1u);
     }
-    // the reversals that cancel: the short form is the long one
-    for (std::uint32_t i : {0u, 1u, 7u, 1000u, 0xfffffu})
-        for (std::uint32_t a : {0u, 0x9e3779b9u})
-            for (std::uint32_t b : {5u, 0x85ebca6bu}) {
-                const auto p = shuffled_dimension0(reverse_bits(i), a, b);
-                EXPECT_EQ(p.index, shuffle_index(i, a));
-                EXPECT_EQ(p.value, owen_scramble(dimension0(shuffle_index(i, a)), b));
-                EXPECT_EQ(scrambled_dimension1(i, b), owen_scramble(dimension1(i), b));
-            }
+    // the shuffle XORed with its value at 0 maps [0, 2^m) onto itself
+    for (std::uint32_t seed : {0u, 1u, 0xdeadbeefu}) {
+        std::set<std::uint32_t> first64;
+        for (std::uint32_t i = 0; i < 64; ++i) first64.insert(shuffle_index(i, seed) ^ shuffle_index(0, seed));
+        EXPECT_EQ(first64.size(), 64u);
+        EXPECT_LT(*first64.rbegin(), 64u);
+    }
     EXPECT_EQ(morton2(1, 0), 1u);
     EXPECT_EQ(morton2(0, 1), 2u);
     EXPECT_EQ(morton2(3, 3), 15u);
     EXPECT_EQ(morton2(0xffff, 0), 0x55555555u);
+}
+
+// Joe & Kuo's table as transcribed (data/sobol_joe_kuo_6_256.txt): each row's polynomial
+// x^s + a₁x^(s−1) + … + a_(s−1)x + 1 is primitive over GF(2) (x has order 2^s − 1 modulo it),
+// the degrees never fall, and every m_k is odd and below 2^k; dimension 0 is van der
+// Corput and dimension 1 the column definition above. A wrong digit in s or a fails the
+// first check, one in m the last.
+TEST(Sobol, JoeKuoRowsArePrimitivePolynomialsWithValidDirectionNumbers) {
+    using namespace iris::sobol;
+    unsigned last_degree = 1;
+    for (const auto& r : iris::data::sobol_joe_kuo::rows) {
+        const std::uint64_t poly = (1ull << r.s) | (static_cast<std::uint64_t>(r.a) << 1) | 1u;
+        const std::uint64_t order = (1ull << r.s) - 1;
+        auto mulx = [&](std::uint64_t v) {  // v · x mod poly
+            v <<= 1;
+            return (v >> r.s) & 1u ? v ^ poly : v;
+        };
+        std::uint64_t v = 1, n = 0;
+        do v = mulx(v), ++n;
+        while (v != 1 && n <= order);
+        EXPECT_EQ(n, order) << "dimension " << r.d << ": not primitive";
+        EXPECT_GE(r.s, last_degree) << r.d;
+        last_degree = r.s;
+        for (unsigned k = 0; k < r.s; ++k) {
+            EXPECT_EQ(r.m[k] % 2, 1u) << r.d << " m" << k + 1;
+            EXPECT_LT(r.m[k], 1u << (k + 1)) << r.d << " m" << k + 1;
+        }
+    }
+    for (std::uint32_t i : {0u, 1u, 6u, 255u, 0x12345678u, 0xffffffffu}) {
+        EXPECT_EQ(point(i, 0), reverse_bits(i));
+        EXPECT_EQ(point(i, 1), dimension1_by_columns(i));
+    }
+    // dimension 2 (x² + x + 1, m = 1, 3; the recurrence gives m₃ = 2·3 ⊕ 4·1 ⊕ 1 = 3)
+    const double want[] = {0, 0.5, 0.75, 0.25, 0.375, 0.875, 0.625, 0.125};
+    for (std::uint32_t i = 0; i < 8; ++i) EXPECT_EQ(point(i, 2) * 0x1.0p-32, want[i]) << i;
+}
+
+// Every dimension's (0, 2) partner: the first 2^m points of (x_d, paired(x_d)) are a
+// (0, m, 2)-net for every d in the table and m ≤ 10 (the proof is in sobol.hpp; the control
+// pairs dimension d with dimension d + 1, which is not a (0, 2)-sequence).
+TEST(Sobol, EveryDimensionWithItsPartnerIsAZeroTwoSequence) {
+    using namespace iris::sobol;
+    int controls_failed = 0;
+    for (std::uint32_t d = 0; d + 1 < dimensions; ++d)
+        for (int m : {1, 4, 7, 10}) {
+            std::vector<glm::vec2> pts, control;
+            for (std::uint32_t i = 0; i < (1u << m); ++i) {
+                const std::uint32_t x = point(i, d);
+                pts.push_back({to_unit(x), to_unit(paired(x))});
+                control.push_back({to_unit(x), to_unit(point(i, d + 1))});
+            }
+            EXPECT_TRUE(is_net(pts, m)) << "dimension " << d << ", m " << m;
+            controls_failed += !is_net(control, m);
+        }
+    EXPECT_GT(controls_failed, 500);
+}
+
+// The smallest t for which the 2^m points are a (t, m, 2)-net: 2^t points in every
+// elementary box of area 2^(t-m).
+int t_value(const std::vector<glm::vec2>& pts, int m) {
+    for (int t = 0; t < m; ++t) {
+        bool ok = true;
+        for (int a = 0; a <= m - t && ok; ++a) {
+            const int b = m - t - a;
+            std::map<std::uint64_t, int> count;
+            for (const auto& p : pts)
+                ++count[static_cast<std::uint64_t>(p.x * static_cast<float>(1 << a)) << 32 |
+                        static_cast<std::uint64_t>(p.y * static_cast<float>(1 << b))];
+            ok = count.size() == (std::size_t{1} << (m - t));
+        }
+        if (ok) return t;
+    }
+    return m;
+}
+
+// Across slots: every 2-D projection of the coordinates of the camera slots and bounce 0
+// (pixel x and y, hero u, B jitter, light point x and y, light choice, lobe, BSDF direction
+// x and y, roulette) of a pixel's first 2^m samples is a (t, m, 2)-net with t ≤ 4 for
+// m ≤ 10, the bound scripts/gen_sobol_slots.py chose the slots' dimensions for. The control:
+// dimension slot + 1 for the light point would pair its y with the pixel's y at t = 9.
+TEST(Sampler, SobolSlotsAreStratifiedJointly) {
+    for (auto k : {sampler_kind::sobol, sampler_kind::zsobol})
+        for (int m : {4, 6, 8, 10}) {
+            std::vector<std::vector<glm::vec2>> coords;  // one per coordinate, (value, 0)
+            for (const auto& s : layout) {
+                if (s.slot > 7) continue;
+                const auto pts = slot_points(k, 1 << m, 5, 3, 100, s.slot, s.two);
+                std::vector<glm::vec2> x, y;
+                for (const auto& p : pts) x.push_back({p.x, 0}), y.push_back({p.y, 0});
+                coords.push_back(x);
+                if (s.two) coords.push_back(y);
+            }
+            ASSERT_EQ(coords.size(), 11u);
+            int worst = 0;
+            for (std::size_t i = 0; i < coords.size(); ++i)
+                for (std::size_t j = i + 1; j < coords.size(); ++j) {
+                    std::vector<glm::vec2> pair;
+                    for (std::size_t n = 0; n < coords[i].size(); ++n) pair.push_back({coords[i][n].x, coords[j][n].x});
+                    worst = std::max(worst, t_value(pair, m));
+                }
+            EXPECT_LE(worst, 4) << iris::sampler_name(k) << ", m " << m;
+            if (m == 10) {
+                EXPECT_GE(worst, 2) << "a 0 would mean the check sees no structure at all";
+            }
+        }
+    using namespace iris::sobol;
+    std::vector<glm::vec2> naive;
+    for (std::uint32_t i = 0; i < 1024; ++i) naive.push_back({to_unit(paired(point(i, 0))), to_unit(paired(point(i, 4)))});
+    EXPECT_EQ(t_value(naive, 10), 9);
 }
 
 }  // namespace

@@ -8,11 +8,21 @@
 /// | sampler | a pixel's numbers |
 /// |---|---|
 /// | `independent` | `counter_rng` (sampling/random.hpp): a hash of (seed, pixel, sample, dimension) |
-/// | `sobol` | Owen-scrambled Sobol' (0, 2)-sequence points, padded: each dimension of the path has its own index shuffle and scrambling, keyed by (seed, pixel, dimension) (sampling/sobol.hpp) |
-/// | `zsobol` | the same points indexed in Morton order over the image, index = (Morton(x, y) ≪ ⌈log₂ spp⌉) + sample, shuffled and scrambled per (seed, dimension) only, so that neighbouring pixels share one net and their errors are distributed as blue noise (Ahmed & Wonka 2020; pbrt-v4's ZSobolSampler) |
+/// | `sobol` | Owen-scrambled Sobol' points (Joe & Kuo's direction numbers, sampling/sobol.hpp): the sample index shuffled once per (seed, pixel), each slot one Sobol' dimension (a 2-D slot: the dimension and its (0, 2) partner), each coordinate scrambled with its own key (Burley 2020) |
+/// | `zsobol` | the same points indexed in Morton order over the image, index = (Morton(x, y) ≪ ⌈log₂ spp⌉) + sample, shuffled and scrambled per seed only, so that neighbouring pixels share one net and their errors are distributed as blue noise (Ahmed & Wonka 2020; pbrt-v4's ZSobolSampler) |
+///
+/// One index shuffle for all slots keeps the Sobol' points' joint structure: a pixel's
+/// samples are stratified across slots (pixel footprint × wavelength × light point), not
+/// only within each, which is what makes the error fall faster than 1/N (docs/results.md).
+/// Padded samplers (a shuffle per slot, as pbrt-v4's PaddedSobol and ZSobol) pair the slots
+/// at random and fall as 1/N; iris pads only the slots past its table (bounce 50 on).
 ///
 /// **Dimension layout.** The path tracer asks for its numbers in *slots*, each a 1-D or a
-/// 2-D point; for the low-discrepancy samplers a slot is one padded dimension:
+/// 2-D point; for the low-discrepancy samplers a slot is one Sobol' dimension, chosen by
+/// scripts/gen_sobol_slots.py (data/sobol_slots.hpp) so that no two coordinates of the
+/// camera and of neighbouring bounces are nearly the same digits (the worst t-value of
+/// their 2-D projections is 4 at m ≤ 10; taking dimension slot + 1 gives t = 9 between
+/// the pixel's y and the light point's y, and a floor in the error):
 ///
 /// | slot | what | kind |
 /// |---|---|---|
@@ -52,6 +62,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "iris/sampling/data/sobol_slots.hpp"
 #include "iris/sampling/random.hpp"
 #include "iris/sampling/sobol.hpp"
 
@@ -99,13 +110,18 @@ public:
     /// \brief The stream of sample `sample` of pixel (x, y), `pixel` = y · width + x.
     constexpr sample_stream(const sampler_setup& s, std::uint32_t x, std::uint32_t y, std::uint64_t pixel,
                             std::uint64_t sample) noexcept
-        : m_rng(s.seed, pixel, sample), m_kind(s.kind) {
+        : m_rng(s.seed, pixel, sample), m_kind(s.kind), m_sample(sample) {
         if (m_kind == sampler_kind::sobol) {
-            m_index = sobol::reverse_bits(static_cast<std::uint32_t>(sample));  // reversed once (at())
             m_key = detail::counter_hash(detail::counter_hash(s.seed ^ 0x50b01ull) ^ pixel);
+            const auto shuffle = static_cast<std::uint32_t>(m_key >> 32);
+            m_index = sobol::shuffle_index(static_cast<std::uint32_t>(sample), shuffle) ^ sobol::shuffle_index(0, shuffle);
         } else if (m_kind == sampler_kind::zsobol) {
-            m_index = (static_cast<std::uint64_t>(sobol::morton2(x, y)) << s.log2_spp) + sample;
-            m_key = detail::counter_hash(s.seed ^ 0x25b01ull);
+            m_sample = (static_cast<std::uint64_t>(sobol::morton2(x, y)) << s.log2_spp) + sample;
+            const std::uint64_t key = detail::counter_hash(s.seed ^ 0x25b01ull);
+            m_index = sobol::shuffle_index64(m_sample, key) ^ sobol::shuffle_index64(0, key);
+            // bits of the Morton index past 32 do not reach a 32-bit point: they key the
+            // scrambling instead, so far-apart image blocks do not repeat one pattern
+            m_key = detail::counter_hash(key ^ (m_index >> 32));
         }
     }
 
@@ -141,39 +157,38 @@ private:
     struct point {
         float x, y;
     };
-    /// \brief Slot `slot`'s point: this sample's index shuffled for the slot, its Sobol'
-    /// dimensions 0 (and 1) Owen-scrambled for the slot — for `sobol`,
-    /// owen_scramble(dimension0(shuffle_index(sample, a)), b), computed from the sample
-    /// index the stream reversed once (`sobol::shuffled_dimension0`: the reversals in
-    /// between cancel).
+    /// \brief Slot `slot`'s point: the slot's Sobol' dimension d (data/sobol_slots.hpp; the
+    /// pixel slot: d = 0) of the stream's shuffled index, with its (0, 2) partner for a 2-D slot (sobol::paired), each
+    /// coordinate Owen-scrambled with its own seed. Past the table of dimensions, `padded`.
     constexpr point at(std::uint32_t slot, bool two) const noexcept {
+        const auto& table = data::sobol_slots::dimension;
+        if (slot >= table.size()) return padded(slot, two);
+        const std::uint32_t d = table[slot];
         const std::uint64_t h = detail::counter_hash(m_key + slot);
-        std::uint32_t i, x;
-        std::uint64_t scramble;
-        if (m_kind == sampler_kind::sobol) {
-            scramble = h >> 32;
-            const auto p = sobol::shuffled_dimension0(static_cast<std::uint32_t>(m_index), static_cast<std::uint32_t>(h),
-                                                      static_cast<std::uint32_t>(scramble));
-            i = p.index;
-            x = p.value;
-        } else {
-            // bits of the Morton index past 32 do not reach a 32-bit point: they key the
-            // scrambling instead, so far-apart image blocks do not repeat one pattern
-            const std::uint64_t z = sobol::shuffle_index64(m_index, h);
-            i = static_cast<std::uint32_t>(z);
-            scramble = detail::counter_hash(h ^ (z >> 32));
-            x = sobol::owen_scramble(sobol::dimension0(i), static_cast<std::uint32_t>(scramble));
-        }
-        const float a = sobol::to_unit(x);
+        const std::uint32_t x = sobol::point(static_cast<std::uint32_t>(m_index), d);
+        const float a = sobol::to_unit(sobol::owen_scramble(x, static_cast<std::uint32_t>(h)));
         if (!two) return {a, 0.0f};
-        const auto seed_b = static_cast<std::uint32_t>(detail::counter_hash(scramble));
-        return {a, sobol::to_unit(sobol::scrambled_dimension1(i, seed_b))};
+        return {a, sobol::to_unit(sobol::owen_scramble(sobol::paired(x), static_cast<std::uint32_t>(h >> 32)))};
+    }
+
+    /// \brief A slot past the table: dimensions 0 and 1 of the sample index shuffled for this
+    /// slot alone (padding), Owen-scrambled for the slot.
+    constexpr point padded(std::uint32_t slot, bool two) const noexcept {
+        const std::uint64_t h = detail::counter_hash(m_key + slot + 0x9adull);
+        const std::uint32_t i = m_kind == sampler_kind::sobol
+                                    ? sobol::shuffle_index(static_cast<std::uint32_t>(m_sample), static_cast<std::uint32_t>(h))
+                                    : static_cast<std::uint32_t>(sobol::shuffle_index64(m_sample, h));
+        const auto seeds = detail::counter_hash(h);
+        const float a = sobol::to_unit(sobol::owen_scramble(sobol::dimension0(i), static_cast<std::uint32_t>(seeds)));
+        if (!two) return {a, 0.0f};
+        return {a, sobol::to_unit(sobol::owen_scramble(sobol::dimension1(i), static_cast<std::uint32_t>(seeds >> 32)))};
     }
 
     counter_rng m_rng;
     sampler_kind m_kind = sampler_kind::independent;
     std::uint32_t m_slot = 0;
-    std::uint64_t m_index = 0;  ///< sobol: the sample index bit-reversed; zsobol: the Morton-ordered index
+    std::uint64_t m_sample = 0;  ///< sobol: the sample index; zsobol: the Morton-ordered index
+    std::uint64_t m_index = 0;   ///< the index shuffled once for all slots (zsobol: 64 bits)
     std::uint64_t m_key = 0;
 };
 

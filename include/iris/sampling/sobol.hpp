@@ -2,15 +2,19 @@
 /// \file
 /// \brief Scrambled Sobol' points for the renderer's low-discrepancy samplers (std only).
 ///
-/// **The sequence.** Only the first two Sobol' dimensions are used: dimension 0 is the van der
-/// Corput sequence (the index's bits reversed) and dimension 1 the one whose generator is
-/// the Pascal matrix mod 2 (Joe & Kuo's first row: s = 1, a = 0, m₁ = 1; Sobol' 1967). Together
-/// they are a (0, 2)-sequence: every aligned block of 2^m consecutive points puts exactly one
-/// point in each elementary interval of area 2^-m. Higher Sobol' dimensions are not a
-/// (0, 2)-sequence in pairs, so every 2-D point a path asks for is this pair, *padded*: each
-/// dimension of the path gets its own index shuffle and its own scrambling (Burley 2020,
-/// §4–5; pbrt-v4's PaddedSobol and ZSobol samplers do the same). This is why no table of
-/// direction numbers is needed: dimension 1's columns follow from v₁ = 2³¹, v_k = v_{k−1} ⊕ (v_{k−1} ≫ 1).
+/// **The sequence.** Sobol' points from Joe & Kuo's direction numbers (new-joe-kuo-6.21201,
+/// its first 256 dimensions, data/sobol_joe_kuo_6_256.txt): dimension 0 is the van der
+/// Corput sequence (the index's bits reversed), dimension d ≥ 1 XORs the generator columns
+/// v_{d,k} of the set bits k of the index (`point`). Dimensions 0 and 1 together are a
+/// (0, 2)-sequence: every aligned block of 2^m consecutive points puts exactly one point in
+/// each elementary interval of area 2^-m. Other pairs of Sobol' dimensions are not, but
+/// every dimension d has a partner that is: `paired`, (x_d, dimension1(reverse(x_d))). Its
+/// generator matrices are (C_d, C₁·C_d) with C₁ = dimension 1's; because all Sobol'
+/// generators are upper triangular, the top-left m × m blocks of (C_d, C₁C_d) are those of
+/// (I, C₁)·C_d, and C_d's block is invertible, so every 2^m-block of the pair is a
+/// (0, m, 2)-net exactly when (dimensions 0, 1) are — always. The renderer's 2-D slots use
+/// such pairs (render/random.hpp), so a pixel's samples are stratified in every slot *and*
+/// jointly across slots as far as the Sobol' dimensions are.
 ///
 /// **Owen scrambling** (`owen_scramble`): each bit of a 32-bit fixed-point value is flipped
 /// by a hash of the bits above it — a nested uniform scramble, computed from the
@@ -21,10 +25,17 @@
 /// **Index shuffling** (`shuffle_index`): the same nested scramble applied to the index bits
 /// the other way round (each bit flipped by a hash of the bits *above* it), so that the
 /// first 2^m shuffled indices are again an aligned block of 2^m indices, in another order:
-/// a pixel's first 2^m samples stay a (0, m, 2)-net whatever the shuffle, and two
-/// dimensions with different shuffles are decorrelated.
+/// a pixel's first 2^m samples stay a (0, m, 2)-net whatever the shuffle. XORed with the
+/// shuffle of 0 (`shuffle_index ⊕ shuffle_index(0)`, still a nested scramble) it maps
+/// [0, 2^m) onto itself, so `point` loops over no more bits than the sample count has.
+/// One shuffle for all dimensions keeps the dimensions' joint structure; a shuffle per
+/// dimension ("padding", Burley 2020 §4–5, pbrt-v4's PaddedSobol) decorrelates them, which
+/// the renderer does only past the table (render/random.hpp).
 
+#include <bit>
 #include <cstdint>
+
+#include "iris/sampling/data/sobol_joe_kuo.hpp"
 
 namespace iris::sobol {
 
@@ -54,12 +65,10 @@ namespace detail {
 /// 32 bits in play, so the column loop would run 32 times per point.
 struct dimension1_tables {
     std::uint32_t t[4][256] = {};
-    std::uint32_t reversed[4][256] = {};  ///< the same, bit-reversed (reversal is linear too)
     constexpr dimension1_tables() {
         for (std::uint32_t b = 0; b < 4; ++b)
             for (std::uint32_t v = 0; v < 256; ++v) {
                 t[b][v] = dimension1_by_columns(v << (8 * b));
-                reversed[b][v] = reverse_bits(t[b][v]);
             }
     }
 };
@@ -71,6 +80,49 @@ constexpr std::uint32_t dimension1(std::uint32_t i) noexcept {
     const auto& t = detail::dimension1_table.t;
     return t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24];
 }
+
+/// \brief How many Sobol' dimensions the table has (0 … dimensions − 1).
+inline constexpr std::uint32_t dimensions = data::sobol_joe_kuo::rows.size() + 1;
+
+namespace detail {
+/// \brief The generator columns of every dimension, 32-bit fixed point (v[d][k] is the
+/// image of index bit k), built at compile time by Joe & Kuo's recurrence:
+/// v_k = m_k · 2^(32−k) for k ≤ s, then v_k = v_{k−s} ⊕ (v_{k−s} ≫ s) ⊕ ⨁_{j<s} a_j v_{k−j}.
+struct generator_tables {
+    std::uint32_t v[dimensions][32] = {};
+    constexpr generator_tables() {
+        for (std::uint32_t k = 0; k < 32; ++k) v[0][k] = 0x80000000u >> k;
+        for (std::uint32_t d = 1; d < dimensions; ++d) {
+            const auto& r = data::sobol_joe_kuo::rows[d - 1];
+            const std::uint32_t s = r.s;
+            for (std::uint32_t k = 0; k < 32; ++k) {  // k = index bit (Joe & Kuo's k + 1)
+                if (k < s) {
+                    v[d][k] = r.m[k] << (31 - k);
+                    continue;
+                }
+                std::uint32_t x = v[d][k - s] ^ (v[d][k - s] >> s);
+                for (std::uint32_t j = 1; j < s; ++j)
+                    if ((r.a >> (s - 1 - j)) & 1u) x ^= v[d][k - j];
+                v[d][k] = x;
+            }
+        }
+    }
+};
+inline constexpr generator_tables generators{};
+}  // namespace detail
+
+/// \brief Sobol' dimension d (< `dimensions`) of point i, 32-bit fixed point: the XOR of
+/// the columns of i's set bits (as many steps as i has bits).
+constexpr std::uint32_t point(std::uint32_t i, std::uint32_t d) noexcept {
+    const std::uint32_t* v = detail::generators.v[d];
+    std::uint32_t x = 0;
+    for (; i != 0; i &= i - 1) x ^= v[std::countr_zero(i)];
+    return x;
+}
+
+/// \brief The partner of a dimension-d value x (= point(i, d)) that makes (x, paired(x)) a
+/// (0, 2)-sequence in i: dimension 1 of the index whose dimension 0 is x.
+constexpr std::uint32_t paired(std::uint32_t x) noexcept { return dimension1(reverse_bits(x)); }
 
 /// \brief Laine–Karras hash: bit k of the result depends only on bits 0…k of x (and the
 /// seed); a bijection for every seed.
@@ -93,25 +145,6 @@ constexpr std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) noexc
 /// aligned block of 2^m indices (bit k of i is flipped by a hash of the bits above it).
 constexpr std::uint32_t shuffle_index(std::uint32_t i, std::uint32_t seed) noexcept {
     return owen_scramble(i, seed);  // the same nested scramble: bits above decide
-}
-
-/// \brief `owen_scramble(dimension1(i), c)` without the reversal that cancels:
-/// reverse(LK_c(reverse(dimension1(i)))), the inner reversal read from the reversed tables.
-constexpr std::uint32_t scrambled_dimension1(std::uint32_t i, std::uint32_t c) noexcept {
-    const auto& t = detail::dimension1_table.reversed;
-    return reverse_bits(laine_karras(t[0][i & 0xffu] ^ t[1][(i >> 8) & 0xffu] ^ t[2][(i >> 16) & 0xffu] ^ t[3][i >> 24], c));
-}
-
-/// \brief `owen_scramble(dimension0(shuffle_index(i, a)), b)` with the bit reversals that
-/// cancel left out, from r = reverse_bits(i): the shuffled index is reverse(LK_a(r)), its
-/// dimension 0 is LK_a(r), and the scramble of that is reverse(LK_b(reverse(LK_a(r)))).
-/// Also returns the shuffled index (for dimension 1).
-struct scrambled_point0 {
-    std::uint32_t value, index;
-};
-constexpr scrambled_point0 shuffled_dimension0(std::uint32_t reversed_index, std::uint32_t a, std::uint32_t b) noexcept {
-    const std::uint32_t index = reverse_bits(laine_karras(reversed_index, a));
-    return {reverse_bits(laine_karras(index, b)), index};
 }
 
 /// \brief 64-bit variant of `shuffle_index` for Morton-ordered indices (ZSobol): a
