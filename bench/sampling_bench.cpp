@@ -6,6 +6,7 @@
 //   BM_mis_weight_c4                one HWSS MIS weight over 4 path pdfs
 //   BM_sample_stream<sampler>       the numbers of one camera sample of a 4-bounce path with
 //                                   next-event estimation (24 numbers in 15 slots, random.hpp)
+//   BM_film_add                     one sample's XYZ added to the film (film.hpp)
 // Targets: a 4-wavelength restricted draw ≤ 30 ns and ≤ 2× the unrestricted (`hwss`) draw
 // of the same run; a rebuild ≤ 20 µs.
 #include <benchmark/benchmark.h>
@@ -13,6 +14,7 @@
 #include <array>
 #include <string>
 
+#include <iris/render/film.hpp>
 #include <iris/render/random.hpp>
 #include <iris/sampling/sampling.hpp>
 #include <iris/spectrum/named.hpp>
@@ -96,6 +98,21 @@ void BM_sample_stream(benchmark::State& state) {
     state.SetLabel(std::string(iris::sampler_name(kind)));
 }
 BENCHMARK(BM_sample_stream)->DenseRange(0, 2);
+
+/// \brief The film's share of a camera sample: adding one XYZ (values over 10 orders of
+/// magnitude) to a 256 × 256 film, pixel after pixel (issue 14: exact accumulation).
+void BM_film_add(benchmark::State& state) {
+    iris::film f(256, 256);
+    const auto& u = uniforms();
+    std::size_t k = 0, i = 0;
+    for (auto _ : state) {
+        f.add(i, {u[k & 4095] * 3.0, u[(k + 1) & 4095] * 1e4, u[(k + 2) & 4095] * 1e-6});
+        k += 3;
+        i = (i + 1) & 65535;
+    }
+    benchmark::DoNotOptimize(f.mean(7));
+}
+BENCHMARK(BM_film_add);
 
 const int registered = [] {
     iris::for_each_preset([]<class P>() {

@@ -91,6 +91,34 @@ private:
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
 };
 
+/// \brief A reference rendered elsewhere (`--reference FILE.exr`, e.g. on a cluster): it must
+/// have the run's size and, if it says which scene it is (iris:scene), be of this scene.
+/// \throws usage_error naming the file and the mismatch
+image external_reference(const scene_desc& scene, const ablation_options& opt, int w, int h, std::string& source) {
+    exr::loaded ref;
+    try {
+        ref = exr::read(opt.reference_file);
+    } catch (const exr::error& e) {
+        throw usage_error(fmt::format("--reference: {}", e.what()));
+    }
+    const auto& px = ref.pixels;
+    if (px.width() != w || px.height() != h)
+        throw usage_error(fmt::format("--reference {}: the image is {}x{}, the run is {}x{} (--width/--height)",
+                                      opt.reference_file.string(), px.width(), px.height(), w, h));
+    const auto attr = [&](const char* key) {
+        const auto it = ref.meta.find(key);
+        return it == ref.meta.end() ? std::string() : it->second;
+    };
+    if (const auto s = attr("iris:scene"); !s.empty() && s != scene.name)
+        throw usage_error(fmt::format("--reference {}: rendered from scene '{}', the run is of '{}'",
+                                      opt.reference_file.string(), s, scene.name));
+    const auto or_unknown = [](const std::string& v) { return v.empty() ? std::string("unknown") : v; };
+    source = fmt::format("`{}` (given with --reference; its header: preset {}, {} spp, sampler {}, seed {}, iris {})",
+                         opt.reference_file.string(), or_unknown(attr("iris:preset")), or_unknown(attr("iris:spp")),
+                         or_unknown(attr("iris:sampler")), or_unknown(attr("iris:seed")), or_unknown(attr("iris:version")));
+    return px;
+}
+
 image reference_image(const scene_desc& scene, const ablation_options& opt, int w, int h, progress& prog) {
     const std::string key = fmt::format("{}-{:016x}-{}x{}-ref{}-{}-seed{:x}-v{}", file_safe(scene.name),
                                         reference_key(scene, opt.scene), w, h, opt.reference_spp, opt.ref_sampler(),
@@ -161,16 +189,23 @@ ablation_result run_ablation(const ablation_options& opt) {
         throw usage_error(fmt::format("the image must be at least {0}x{0} pixels (one SSIM window), got {1}x{2}",
                                       ssim_window, w, h));
     (void)crop_rectangle(opt.crop, w, h);  // a bad --crop fails now, not after the renders
+    ablation_result result;
+    if (!opt.reference_file.empty()) {  // and so does a bad --reference
+        result.reference = external_reference(scene, opt, w, h, result.reference_source);
+        fmt::print(stderr, "reference: {} (given)\n", opt.reference_file.string());
+    }
     std::error_code ec;
     fs::create_directories(opt.out / "snapshots", ec);
     if (ec) throw usage_error(fmt::format("cannot create output directory '{}': {}", opt.out.string(), ec.message()));
     const int max_spp = opt.spp.back();
 
     // work estimate in passes (time-equal renders count their largest budget's passes as they go)
-    progress prog(static_cast<double>(opt.reference_spp) +
+    progress prog((opt.reference_file.empty() ? static_cast<double>(opt.reference_spp) : 0.0) +
                   static_cast<double>(opt.presets.size()) * opt.seeds * max_spp);
-    ablation_result result;
-    result.reference = reference_image(scene, opt, w, h, prog);
+    if (opt.reference_file.empty()) {
+        result.reference = reference_image(scene, opt, w, h, prog);
+        result.reference_source = fmt::format("`hwss`, {} spp, sampler `{}`", opt.reference_spp, opt.ref_sampler());
+    }
 
     for (const auto& preset : opt.presets) {
         for (int seed = 1; seed <= opt.seeds; ++seed) {

@@ -27,6 +27,7 @@ struct ablation_options {
     std::string crop;  ///< "x,y,w,h"; empty: the centre
     std::string sampler = "sobol";  ///< of every preset's renders
     std::string reference_sampler;         ///< of the reference; empty: `sampler`
+    std::filesystem::path reference_file;  ///< a reference rendered elsewhere; empty: render (or cache) one
     const std::string& ref_sampler() const { return reference_sampler.empty() ? sampler : reference_sampler; }
 };
 
@@ -43,6 +44,7 @@ struct ablation_result {
     std::vector<ablation_row> spp_rows;
     std::vector<ablation_row> time_rows;
     image reference;
+    std::string reference_source;  ///< where the reference came from, for summary.md
     std::vector<std::pair<std::string, image>> first_snapshots;  ///< per preset, seed 0, smallest spp
 };
 

@@ -4,10 +4,12 @@
 //       [--reference-spp N=16384] [--time-budgets 1,2,4,8s] [--seeds K=1]
 //       [--width W --height H (scene's)] [--threads T=all] [--nthold N=512]
 //       [--cache DIR=~/.cache/iris] [--crop x,y,w,h (centre)]
-//       [--sampler independent|sobol|zsobol] [--reference-sampler S (--sampler)] -o DIR
+//       [--sampler independent|sobol|zsobol] [--reference-sampler S (--sampler)]
+//       [--reference FILE.exr (instead of rendering one)] -o DIR
 //
 // Renders (or loads from the cache, keyed by scene content, size, seed, reference spp, sampler and code
-// — this executable's bytes) an unbiased `hwss` reference, renders each preset progressively once per seed
+// — this executable's bytes) an unbiased `hwss` reference, or takes one rendered elsewhere (--reference: of
+// the run's size and, per its iris:scene attribute, of its scene; summary.md records its file and header), renders each preset progressively once per seed
 // with snapshots at the requested spp (and wall-clock budgets), and writes DIR/results.csv
 // (scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim), DIR/results_time.csv, the snapshot
 // EXRs, SSIM/MSE plots against spp and seconds, crops at the smallest spp side by side,
@@ -47,11 +49,11 @@ int main(int argc, char** argv) {
                  "iris-ablate"};
     app.set_version_flag("--version", std::string(iris::version));
     iris::app::ablation_options o;
-    std::string presets = "hwss,paper", spp = "16,32,64,128,256,512", budgets, out, cache;
+    std::string presets = "hwss,paper", spp = "16,32,64,128,256,512", budgets, out, cache, reference;
     app.add_option("SCENE", o.scene, "built-in scene name or scene JSON file")->required();
     app.add_option("--presets", presets, "comma-separated presets (iris-render --list-presets)")->capture_default_str();
     app.add_option("--spp", spp, "comma-separated spp snapshots")->capture_default_str();
-    app.add_option("--reference-spp", o.reference_spp, "spp of the hwss reference")->capture_default_str();
+    auto* ref_spp = app.add_option("--reference-spp", o.reference_spp, "spp of the hwss reference")->capture_default_str();
     app.add_option("--time-budgets", budgets, "comma-separated wall-clock budgets, e.g. 1,2,4,8s (time-equal mode)");
     app.add_option("--seeds", o.seeds, "independent runs per preset (mean ± std)")->capture_default_str();
     app.add_option("--width", o.width, "image width (default: the scene's)");
@@ -61,10 +63,15 @@ int main(int argc, char** argv) {
     app.add_option("--sampler", o.sampler, "sampler of every preset's renders: independent, sobol or zsobol")
         ->check(CLI::IsMember({"independent", "sobol", "zsobol"}))
         ->capture_default_str();
-    app.add_option("--reference-sampler", o.reference_sampler,
+    auto* ref_sampler = app.add_option("--reference-sampler", o.reference_sampler,
                    "sampler of the reference (default: --sampler; give the same one to compare runs with different "
                    "--sampler against one reference)")
         ->check(CLI::IsMember({"independent", "sobol", "zsobol"}));
+    app.add_option("--reference", reference,
+                   "an EXR to use as the reference instead of rendering one (e.g. rendered on a cluster): the run's "
+                   "size, and of its scene if its header names one")
+        ->excludes(ref_spp)
+        ->excludes(ref_sampler);
     app.add_option("--cache", cache, "reference cache directory (default ~/.cache/iris)");
     app.add_option("--crop", o.crop, "crop rectangle x,y,w,h for the side-by-side PNG (default: the centre)");
     app.add_option("-o,--output", out, "output directory")->required();
@@ -95,6 +102,7 @@ int main(int argc, char** argv) {
         if ((o.width != 0) != (o.height != 0) || o.width < 0 || o.height < 0)
             throw iris::app::usage_error("--width and --height go together and must be positive");
         o.out = out;
+        o.reference_file = reference;
         o.cache = cache.empty() ? default_cache() : std::filesystem::path(cache);
         const auto result = iris::app::run_ablation(o);
         iris::app::write_report(o, result);

@@ -173,6 +173,15 @@ TEST(Sobol, BuildingBlocks) {
         for (std::uint64_t i = 0; i < 32; ++i) first32.insert(shuffle_index64((7ull << 40) + i, seed) >> 5);
         EXPECT_EQ(first32.size(), 1u);
     }
+    // Owen scrambling is nested: whether bit 1 (weight 1/4) flips depends on bit 0, for about
+    // half the seeds (a digital shift, v ^ seed, flips it the same way for every v)
+    int differs = 0;
+    for (std::uint32_t seed = 0; seed < 64; ++seed) {
+        const auto flip = [&](std::uint32_t v) { return ((owen_scramble(v, seed * 0x9e3779b9u) ^ v) >> 30) & 1u; };
+        differs += flip(0) != flip(0x80000000u);
+    }
+    EXPECT_GT(differs, 16);
+    EXPECT_LT(differs, 48);
     // the shuffle XORed with its value at 0 maps [0, 2^m) onto itself
     for (std::uint32_t seed : {0u, 1u, 0xdeadbeefu}) {
         std::set<std::uint32_t> first64;

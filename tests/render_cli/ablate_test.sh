@@ -12,6 +12,10 @@
 # summary.md has a table row per spp x preset; the plots and the crops are PNGs; the 12
 # snapshots exist; no temporary file is left. (SSIM is not checked for a trend: the
 # furnace's radiance 5 saturates the display range SSIM is computed on.)
+# A third run gives the cached reference back with --reference (a reference rendered
+# elsewhere): the same metrics, no reference rendered, and summary.md names the file and its
+# header. Then --reference with the wrong size, of another scene (iris:scene), unreadable,
+# or together with --reference-spp: exit 2, a message naming the problem, nothing written.
 set -u
 ablate=$1 work=$2
 out=$work/out cache=$work/cache
@@ -104,4 +108,38 @@ status=$?
 grep -q "^reference: .* (cached)$" "$work/stderr.txt" || fail "second run: the cached reference was not used"
 cut -d, -f1-5,7-9 "$csv" | cmp -s - "$work/metrics_first.csv" ||
   fail "second run (cached reference) gives other metrics: $(cut -d, -f1-5,7-9 "$csv" | diff "$work/metrics_first.csv" -)"
+
+# ---- third run: the cached reference given with --reference (as one rendered elsewhere
+# would be) gives the same metrics, and summary.md says where it came from
+ref=$(ls "$cache"/furnace-*-24x16-ref256-*.exr | head -1)
+[ -f "$ref" ] || fail "no cached reference in $cache"
+cp "$ref" "$work/cluster-reference.exr"
+"$ablate" furnace --presets hwss,paper --spp 2,8,32 --seeds 2 --width 24 --height 16 --cache "$work/empty-cache" \
+  --reference "$work/cluster-reference.exr" -o "$out" >"$work/stdout.txt" 2>"$work/stderr.txt"
+status=$?
+[ "$status" -eq 0 ] || fail "--reference run: exit status $status"
+[ ! -e "$work/empty-cache" ] || fail "--reference run rendered a reference into the cache"
+cut -d, -f1-5,7-9 "$csv" | cmp -s - "$work/metrics_first.csv" || fail "--reference gives other metrics"
+grep -q "^Reference: \`$work/cluster-reference.exr\` (given with --reference; its header: preset hwss, 256 spp, sampler sobol, seed " \
+  "$out/summary.md" || fail "summary.md does not record the given reference: $(grep '^Reference' "$out/summary.md")"
+
+# ---- a reference of another size or scene, an unreadable one, or --reference with
+# --reference-spp: exit 2, one line naming the problem, nothing written
+bad() {  # bad WHAT PATTERN SCENE ARGS...
+  local what=$1 pattern=$2
+  shift 2
+  rm -rf "$work/bad-out"
+  "$ablate" "$@" --presets hwss --spp 2 --cache "$work/empty-cache" -o "$work/bad-out" \
+    >"$work/stdout.txt" 2>"$work/stderr.txt"
+  status=$?
+  [ "$status" -eq 2 ] || fail "$what: exit status $status, expected 2"
+  grep -q -- "$pattern" "$work/stderr.txt" || fail "$what: stderr does not say '$pattern'"
+  [ ! -e "$work/bad-out" ] || fail "$what: the output directory was created"
+}
+bad "other size" "the image is 24x16, the run is 32x16" furnace --width 32 --height 16 --reference "$work/cluster-reference.exr"
+bad "other scene" "rendered from scene 'furnace', the run is of 'cornell'" cornell --width 24 --height 16 \
+  --reference "$work/cluster-reference.exr"
+printf 'not an exr' >"$work/garbage.exr"
+bad "unreadable" "garbage.exr" furnace --width 24 --height 16 --reference "$work/garbage.exr"
+bad "with --reference-spp" "excludes" furnace --width 24 --height 16 --reference "$work/cluster-reference.exr" --reference-spp 64
 echo "ok"

@@ -449,8 +449,8 @@ TEST(Statistical, UnbiasedPresetsMseFallsAsOneOverN) {
     const auto s = iris::scene::builtin_scene("cornell");
     options ref;
     ref.preset = "hwss";
-    ref.sampler = "independent";  // the 1/N law is i.i.d. sampling's (the Sobol' samplers are steeper
-                                  // here: hwss-c1 with `sobol` -1.27 ± 0.02; tests/renderer/sampler_render_test.cpp)
+    ref.sampler = "independent";  // the 1/N law is i.i.d. sampling's (the Sobol' samplers converge
+                                  // faster: tests/renderer/sampler_render_test.cpp)
     ref.width = ref.height = 24;
     ref.spp = 4096;
     ref.seed = 999;

@@ -110,7 +110,9 @@ public:
     /// \brief The stream of sample `sample` of pixel (x, y), `pixel` = y · width + x.
     constexpr sample_stream(const sampler_setup& s, std::uint32_t x, std::uint32_t y, std::uint64_t pixel,
                             std::uint64_t sample) noexcept
-        : m_rng(s.seed, pixel, sample), m_kind(s.kind), m_sample(sample) {
+        : m_rng(s.kind == sampler_kind::independent ? counter_rng(s.seed, pixel, sample) : counter_rng(0)),
+          m_kind(s.kind),
+          m_sample(sample) {  // (counter_rng(0) folds to a constant: the Sobol' streams skip its hashes)
         if (m_kind == sampler_kind::sobol) {
             m_key = detail::counter_hash(detail::counter_hash(s.seed ^ 0x50b01ull) ^ pixel);
             const auto shuffle = static_cast<std::uint32_t>(m_key >> 32);
@@ -124,8 +126,6 @@ public:
             m_key = detail::counter_hash(key ^ (m_index >> 32));
         }
     }
-
-    constexpr sampler_kind kind() const noexcept { return m_kind; }
 
     /// \brief The next 1-D slot, in [0, 1).
     constexpr float next() noexcept {

@@ -41,7 +41,7 @@ struct options {
     /// at one uniform wavelength, the independent check; the preset is then not used).
     std::string estimator = "nee-mis";
     /// \brief Where a pixel's random numbers come from: "sobol" (the default: SSIM at 16 spp
-    /// +20–29 % over independent sampling on the paper's scenes, as good as "zsobol" and
+    /// +22–29 % over independent sampling on the paper's scenes, as good as "zsobol" and
     /// cheaper; docs/results.md#samplers), "zsobol" or "independent" (iris/render/random.hpp:
     /// the samplers and their dimension layout).
     std::string sampler = "sobol";
