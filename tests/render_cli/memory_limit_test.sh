@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The largest image iris-render accepts (16384 x 16384: a 8 GiB film at 32 bytes a pixel)
+# The largest image iris-render accepts (16384 x 16384: a 14 GiB film at 56 bytes a pixel)
 # under a 2 GiB address-space limit:  memory_limit_test.sh IRIS_RENDER WORK_DIR
 # Must fail cleanly: exit 1, one line on stderr naming the size and the memory it needs,
 # nothing written. Would catch a std::bad_alloc escaping (abort, exit 134), a message
@@ -16,7 +16,7 @@ rm -rf "$dir" && mkdir -p "$dir"
 status=$?
 fail() { echo "FAIL: $*" >&2; cat "$dir/err.txt" >&2; exit 1; }
 [ "$status" -eq 1 ] || fail "exit status $status, expected 1"
-grep -q "^iris-render: error: not enough memory for a 16384x16384 film (8.00 GiB at 32 bytes per pixel)$" "$dir/err.txt" ||
+grep -q "^iris-render: error: not enough memory for a 16384x16384 film (14.00 GiB at 56 bytes per pixel)$" "$dir/err.txt" ||
   fail "no clear out-of-memory message"
 [ "$(wc -l <"$dir/err.txt")" -eq 1 ] || fail "more than one line on stderr"
 [ ! -s "$dir/out.txt" ] || fail "something on stdout"
