@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtinyobjloader-dev
   gnuplot-nox
+  libopenmpi-dev openmpi-bin
 )
 # Extra packages for optional work, e.g. `scripts/deps.sh clang-16 libclang-rt-16-dev` (fuzzing).
 packages+=("$@")

@@ -4,12 +4,23 @@
 //       [--threads T=all] [--seed S=1] [--nthold N=512] [--width W --height H (scene's)]
 //       [--png OUT.png] [--stats OUT.json] [--every K=0 (spp)] [--every-seconds T=0]
 //       [--half] [--max-depth D=32] [--sampler independent|sobol|zsobol]
+//       [--resume] [--checkpoint-seconds T=600] [--keep-checkpoint]
+//   mpirun -np N iris-render …   (the passes shared between N processes)
 //   iris-render --list-presets | --list-scenes
 //
 // The image is rewritten atomically every K samples / T seconds and at the end, so a
-// viewer that reloads it (e.g. tev) shows it converge. Ctrl-C stops after the current
-// pass, writes the last complete image (with its true spp in the metadata) and exits 130.
-// Bad arguments: one line on stderr, exit 2, nothing written.
+// viewer that reloads it (e.g. tev) shows it converge. Every rewrite also writes the
+// checkpoint OUT.exr.ckpt (the exact film; iris/renderer/checkpoint.hpp), as does every
+// T seconds of --checkpoint-seconds; `--resume` goes on from it to the bytes an
+// uninterrupted render writes. Ctrl-C (SIGINT) or SIGTERM stops after the current pass,
+// writes the last complete image (with its true spp in the metadata) and its checkpoint,
+// and exits 130 (143 for SIGTERM). A complete render removes its checkpoint.
+//
+// Under mpirun, rank r renders the passes i ≡ r (mod N); rank 0 sums the ranks' films
+// exactly (iris::mpi) and writes everything. The image is the single process's, bit for
+// bit, for any N, and a checkpoint made with one N resumes with another.
+// Bad arguments, checkpoints of another render or corrupt ones: one line on stderr,
+// exit 2, nothing written.
 #include <algorithm>
 #include <atomic>
 #include <cctype>
@@ -30,14 +41,39 @@
 #include <iris/exr/exr.hpp>
 #include <iris/renderer/renderer.hpp>
 #include <iris/scene/scene.hpp>
+#include <iris/renderer/checkpoint.hpp>
 #include <iris/version.hpp>
+#if IRIS_HAVE_MPI
+#include <iris/mpi/mpi.hpp>
+#endif
 
 #include "cli.hpp"
 
 namespace {
 
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint(int) { g_interrupted.store(true); }
+std::atomic<int> g_signal{0};  ///< SIGINT or SIGTERM once received
+extern "C" void on_signal(int sig) { g_signal.store(sig); }
+
+#if IRIS_HAVE_MPI
+using ranks_session = iris::mpi::session;
+#else
+/// \brief One process: what iris::mpi::session does without a launcher.
+struct ranks_session {
+    ranks_session(int&, char**&) {}
+    int rank() const noexcept { return 0; }
+    int size() const noexcept { return 1; }
+    bool active() const noexcept { return false; }
+    iris::film reduce(const iris::film& f) const { return f; }
+    int max(int v) const { return v; }
+    std::uint64_t sum(std::uint64_t v) const { return v; }
+    double broadcast(double v) const { return v; }
+    void abort(int) const {}
+};
+#endif
+
+/// \brief Set once the ranks have started working together: an error after that must end
+/// every rank (MPI_Abort), where one before it is met by every rank alike.
+bool g_collective = false;
 
 namespace fs = std::filesystem;
 
@@ -45,9 +81,9 @@ struct args {
     std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis",
                 sampler = "sobol";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
-    double every_seconds = 0.0;
+    double every_seconds = 0.0, checkpoint_seconds = 600.0;
     std::uint64_t seed = 1;
-    bool half = false, list_presets = false, list_scenes = false;
+    bool half = false, list_presets = false, list_scenes = false, resume = false, keep_checkpoint = false;
 };
 
 void check_writable(const std::string& path, const char* what) {
@@ -86,21 +122,40 @@ iris::exr::metadata metadata(const iris::scene_desc& s, const args& a, const iri
             {"iris:estimator", st.estimator},
             {"iris:sampler", st.sampler},
             {"iris:spp", std::to_string(st.spp_done)},
-            {"iris:seconds", fmt::format("{:.3f}", st.seconds)},
             {"iris:seed", std::to_string(a.seed)},
             {"iris:nthold", std::to_string(a.nthold)},
             {"iris:nan_inf", std::to_string(st.nan_inf)},
             {"iris:version", std::string(iris::version)}};
 }
 
+/// \brief The image (a pure function of the render's key and spp: no time or machine in
+/// its header, so a resumed or distributed render writes the same bytes; timing is in
+/// --stats) and the PNG.
 void write_outputs(const iris::scene_desc& s, const args& a, const iris::film& f, const iris::renderer::status& st) {
     const iris::image img = f.to_image();
     iris::exr::write(a.out, img, metadata(s, a, st), a.half ? iris::exr::pixel_type::half : iris::exr::pixel_type::float32);
     if (!a.png.empty()) iris::exr::write_png(a.png, img);
 }
 
-void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer::status& st) {
+std::string checkpoint_path(const args& a) { return a.out + ".ckpt"; }
+
+iris::renderer::checkpoint_key key_of(const iris::scene_desc& s, const args& a, int width, int height) {
+    return {std::string(iris::version), s.name, iris::scene::fingerprint(s), a.preset, a.estimator, a.sampler, a.seed,
+            a.nthold, a.max_depth, a.spp, width, height};
+}
+
+/// \brief This run's totals over every rank (samples, rays, dropped samples; rank 0's time).
+struct run_totals {
+    std::uint64_t samples = 0, rays = 0;
+    double seconds = 0.0;
+    int ranks = 1, resumed_from = 0;
+};
+
+void write_stats(const iris::scene_desc& s, const args& a, iris::renderer::status st, const run_totals& t) {
     if (a.stats.empty()) return;
+    st.samples = t.samples;
+    st.rays = t.rays;
+    st.seconds = t.seconds;
     nlohmann::json j = {{"scene", s.name},
                         {"preset", a.preset},
                         {"config", st.config_name},
@@ -121,6 +176,8 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
                         {"rays", st.rays},
                         {"nan_inf_count", st.nan_inf},
                         {"interrupted", st.interrupted},
+                        {"ranks", t.ranks},
+                        {"resumed_from_spp", t.resumed_from},
                         {"version", std::string(iris::version)}};
     iris::exr::write_atomically(a.stats, [&](const fs::path& tmp) {
         std::ofstream o(tmp);
@@ -129,13 +186,14 @@ void write_stats(const iris::scene_desc& s, const args& a, const iris::renderer:
     });
 }
 
-int run_render(const args& a) {
+int run_render(const args& a, const ranks_session& mpi) {
     if (a.spp <= 0) throw iris::app::usage_error(fmt::format("--spp must be > 0, got {}", a.spp));
     if (a.nthold < 1) throw iris::app::usage_error(fmt::format("--nthold must be >= 1, got {}", a.nthold));
     if (a.threads < 0) throw iris::app::usage_error(fmt::format("--threads must be >= 0, got {}", a.threads));
     if ((a.width != 0) != (a.height != 0) || a.width < 0 || a.height < 0 || a.width > 16384 || a.height > 16384)
         throw iris::app::usage_error("--width and --height go together and must be in 1..16384");
-    if (a.every < 0 || a.every_seconds < 0) throw iris::app::usage_error("--every and --every-seconds must be >= 0");
+    if (a.every < 0 || a.every_seconds < 0 || a.checkpoint_seconds < 0)
+        throw iris::app::usage_error("--every, --every-seconds and --checkpoint-seconds must be >= 0");
     if (a.max_depth < 1 || a.max_depth > 10000) throw iris::app::usage_error("--max-depth must be in 1..10000");
     if (a.out.empty()) throw iris::app::usage_error("an output image is required: -o OUT.exr");
     try {
@@ -173,36 +231,104 @@ int run_render(const args& a) {
     opt.isa = a.isa;
     opt.estimator = a.estimator;
     opt.sampler = a.sampler;
+    opt.rank = mpi.rank();
+    opt.ranks = mpi.size();
+    const int width = a.width > 0 ? a.width : scene.camera.width;
+    const int height = a.height > 0 ? a.height : scene.camera.height;
+    const bool root = mpi.rank() == 0;
 
-    std::signal(SIGINT, on_sigint);
-    const bool tty = ::isatty(STDERR_FILENO) != 0;
-    auto last_write = std::chrono::steady_clock::now();
-    int last_written_spp = 0;
+    // The checkpoint: read and checked by rank 0 before anything is written; every rank
+    // learns how it went (spp done, or -1: rank 0 stops with the reason, the others exit 2).
+    const std::string ckpt = checkpoint_path(a);
+    const iris::renderer::checkpoint_key key = key_of(scene, a, width, height);
+    iris::renderer::checkpoint resumed;
+    double start_spp = 0;
+    std::string refusal;
+    if (root) {
+        if (a.resume) {
+            try {
+                resumed = iris::renderer::read_checkpoint(ckpt);
+                if (const auto m = iris::renderer::key_mismatch(resumed.key, key))
+                    refusal = fmt::format("checkpoint '{}' belongs to another render: {}; nothing written", ckpt, *m);
+                start_spp = resumed.spp_done;
+            } catch (const iris::renderer::checkpoint_error& e) {
+                refusal = e.what();
+            }
+        } else if (fs::exists(ckpt)) {
+            refusal = fmt::format("checkpoint '{}' of an unfinished render exists: --resume continues it (or delete it to "
+                                  "start again); nothing written", ckpt);
+        }
+        if (!refusal.empty()) start_spp = -1;
+    }
+    start_spp = mpi.broadcast(start_spp);
+    if (start_spp < 0) throw iris::app::usage_error(root ? refusal : std::string("rank 0 could not resume (see its message)"));
+    opt.start_spp = static_cast<int>(start_spp);
+    g_collective = mpi.active();
+
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    const bool tty = root && ::isatty(STDERR_FILENO) != 0;
+    const auto run_start = std::chrono::steady_clock::now();
+    auto last_image = run_start, last_checkpoint = run_start;
+    bool stopped = false;
+
+    run_totals totals;
+    std::uint64_t dropped = 0;  // samples dropped over all ranks and runs (at the last save)
+    totals.ranks = mpi.size();
+    totals.resumed_from = opt.start_spp;
+    // This run's totals over the ranks, added to the checkpoint's. Collective.
+    const auto gather_totals = [&](const iris::renderer::status& st) {
+        totals.samples = mpi.sum(st.samples);
+        totals.rays = mpi.sum(st.rays);
+        totals.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+    };
+    // Rank 0 writes the image (if asked) and the checkpoint of the film summed over the
+    // ranks. Collective.
+    const auto save = [&](const iris::film& local, iris::renderer::status st, bool image, bool checkpoint) {
+        gather_totals(st);
+        iris::film sum = mpi.reduce(local);
+        if (!root) return;
+        st.nan_inf = dropped = sum.dropped();
+        if (image) write_outputs(scene, a, sum, st);
+        if (checkpoint)
+            iris::renderer::write_checkpoint(ckpt, {key, st.spp_done, resumed.samples + totals.samples,
+                                                    resumed.rays + totals.rays, resumed.seconds + totals.seconds,
+                                                    std::move(sum)});
+    };
 
     iris::renderer::hooks h;
-    h.cancel = &g_interrupted;
+    int last_spp = opt.start_spp;
     h.on_pass = [&](const iris::film& f, const iris::renderer::status& st) {
+        // One collective per round: bit 0 "write now" (rank 0's clocks decide), bit 1 "stop"
+        // (a signal on any rank).
         const auto now = std::chrono::steady_clock::now();
-        const bool by_count = a.every > 0 && st.spp_done % a.every == 0;
-        const bool by_time = a.every_seconds > 0 && std::chrono::duration<double>(now - last_write).count() >= a.every_seconds;
-        if ((by_count || by_time) && st.spp_done < st.spp_total) {
-            write_outputs(scene, a, f, st);
-            last_write = now;
-            last_written_spp = st.spp_done;
+        const auto since = [&](auto t) { return std::chrono::duration<double>(now - t).count(); };
+        const bool by_count = a.every > 0 && st.spp_done / a.every != last_spp / a.every;
+        const bool image_due = root && (by_count || (a.every_seconds > 0 && since(last_image) >= a.every_seconds));
+        const bool checkpoint_due = root && a.checkpoint_seconds > 0 && since(last_checkpoint) >= a.checkpoint_seconds;
+        const int flags = mpi.max((image_due ? 1 : 0) | (checkpoint_due ? 2 : 0) | (g_signal.load() != 0 ? 4 : 0));
+        last_spp = st.spp_done;
+        stopped = (flags & 4) != 0;
+        if ((flags & 3) != 0 && !stopped && st.spp_done < st.spp_total) {
+            save(f, st, (flags & 1) != 0, true);
+            if (flags & 1) last_image = now;
+            last_checkpoint = now;
         }
         if (tty) {
-            const double sps = st.seconds > 0 ? static_cast<double>(st.samples) / st.seconds : 0.0;
-            const double left = st.spp_done > 0 ? st.seconds / st.spp_done * (st.spp_total - st.spp_done) : -1.0;
-            const int width = 30;
-            const int filled = st.spp_total > 0 ? width * st.spp_done / st.spp_total : 0;
+            const double sps = st.seconds > 0 ? static_cast<double>(st.samples) * mpi.size() / st.seconds : 0.0;
+            const int done = st.spp_done - opt.start_spp;
+            const double left = done > 0 ? st.seconds / done * (st.spp_total - st.spp_done) : -1.0;
+            const int bar = 30;
+            const int filled = st.spp_total > 0 ? bar * st.spp_done / st.spp_total : 0;
             fmt::print(stderr, "\r[{:<{}}] {}/{} spp  {:.2f} Msamples/s  ETA {}   ", std::string(static_cast<std::size_t>(filled), '#'),
-                       width, st.spp_done, st.spp_total, sps * 1e-6, eta(left));
+                       bar, st.spp_done, st.spp_total, sps * 1e-6, eta(left));
         }
-        return true;
+        return !stopped;
     };
-    (void)last_written_spp;
 
     iris::film f(1, 1);
+    if (root && opt.start_spp > 0) f = std::move(resumed.image);
+    else if (opt.start_spp > 0) f = iris::film(width, height);
     iris::renderer::status st;
     try {
         st = iris::renderer::render(scene, opt, f, h);
@@ -210,24 +336,29 @@ int run_render(const args& a) {
         throw iris::app::usage_error(e.what());
     }
     if (tty) fmt::print(stderr, "\n");
-    if (st.spp_done > 0) write_outputs(scene, a, f, st);
-    write_stats(scene, a, st);
-    if (st.spp_done == 0) {  // interrupted during the first pass: there is no image to write
-        fmt::print("{}: not written, interrupted before the first pass completed\n", a.out);
-        return 130;
-    }
+    st.interrupted = st.spp_done < st.spp_total;
+    // the last complete image; the checkpoint too if the render is to go on
+    const bool keep = st.interrupted || a.keep_checkpoint;
+    save(f, st, true, keep);
+    if (!root) return 0;
+    std::error_code ec;
+    if (!keep) fs::remove(ckpt, ec);
+    st.nan_inf = dropped;
+    write_stats(scene, a, st, totals);
+    const int sig = g_signal.load();
     fmt::print("{}: {} with {} ({}), {}x{}, {} spp in {:.2f} s: {:.3f} Msamples/s, {:.2f} Mrays/s, {} NaN/Inf samples dropped{}\n",
                a.out, scene.name, a.estimator == "bsdf-only" ? std::string("the bsdf-only estimator") : a.preset,
-               a.estimator == "bsdf-only" ? std::string("no preset") : st.config_name, st.width, st.height, st.spp_done, st.seconds,
-               st.seconds > 0 ? static_cast<double>(st.samples) / st.seconds * 1e-6 : 0.0,
-               st.seconds > 0 ? static_cast<double>(st.rays) / st.seconds * 1e-6 : 0.0, st.nan_inf,
+               a.estimator == "bsdf-only" ? std::string("no preset") : st.config_name, st.width, st.height, st.spp_done,
+               totals.seconds, totals.seconds > 0 ? static_cast<double>(totals.samples) / totals.seconds * 1e-6 : 0.0,
+               totals.seconds > 0 ? static_cast<double>(totals.rays) / totals.seconds * 1e-6 : 0.0, st.nan_inf,
                st.interrupted ? " (interrupted)" : "");
-    return st.interrupted ? 130 : 0;
+    return st.interrupted ? (sig == SIGTERM ? 143 : 130) : 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    ranks_session mpi(argc, argv);
     CLI::App app{"iris-render: progressive spectral rendering of a scene with a sampling preset", "iris-render"};
     app.set_version_flag("--version", std::string(iris::version));
     args a;
@@ -263,6 +394,15 @@ int main(int argc, char** argv) {
                    "blue-noise error)")
         ->check(CLI::IsMember({"independent", "sobol", "zsobol"}))
         ->capture_default_str();
+    app.add_flag("--resume", a.resume,
+                 "go on from the checkpoint OUT.exr.ckpt to the image an uninterrupted render writes (same bytes); it "
+                 "must be this render's (scene, preset, estimator, sampler, seed, nthold, max depth, spp, size, iris "
+                 "version), else exit 2 and nothing written");
+    app.add_option("--checkpoint-seconds", a.checkpoint_seconds,
+                   "also write the checkpoint every T seconds (0: only with the images of --every/--every-seconds "
+                   "and when interrupted)")
+        ->capture_default_str();
+    app.add_flag("--keep-checkpoint", a.keep_checkpoint, "keep the checkpoint after a complete render (default: removed)");
     app.add_flag("--half", a.half, "write half-float EXR (default float)");
     app.add_flag("--list-presets", a.list_presets, "list the sampling presets and exit");
     app.add_flag("--list-scenes", a.list_scenes, "list the built-in scenes and exit");
@@ -278,8 +418,10 @@ int main(int argc, char** argv) {
             return;
         }
         if (a.scene.empty()) throw iris::app::usage_error("a scene is required (see --list-scenes)");
-        status = run_render(a);
+        status = run_render(a, mpi);
     });
     const int rc = iris::app::run(app, argc, argv);
+    // an error on one rank while the others work with it: end them all, with its status
+    if (rc != 0 && g_collective && mpi.size() > 1) mpi.abort(rc);
     return rc != 0 ? rc : status;
 }

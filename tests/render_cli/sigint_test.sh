@@ -6,7 +6,8 @@
 # after the current pass: exit status 130, "(interrupted)" in its summary line, the image
 # still a valid EXR whose iris:spp is the number of complete passes (< 100000, and the
 # same in the summary line and in the --stats JSON, which is only written at the end),
-# nothing on stderr and no temporary file left in the directory.
+# nothing on stderr, the checkpoint X.exr.ckpt beside it and no temporary file left in the
+# directory.
 # Would catch: no SIGINT handler (killed by the signal: no summary, no stats), a handler
 # that does not stop the render (timeout), the final image not written or written with
 # the requested rather than the done spp, a torn or half-renamed EXR.
@@ -70,6 +71,7 @@ json=$(tr -d ' \n' <"$dir/X.json") || fail "X.json (--stats) not written"
 [[ $json == *'"interrupted":true'* ]] || fail "X.json does not say interrupted: $json"
 [[ $json == *"\"spp\":$exr_spp,"* ]] || fail "X.json's spp is not $exr_spp: $json"
 
-leftover=$(cd "$dir" && ls -A | grep -v -x -e X.exr -e X.json -e out.txt -e err.txt)
+[ -s "$dir/X.exr.ckpt" ] || fail "no checkpoint X.exr.ckpt to resume from"
+leftover=$(cd "$dir" && ls -A | grep -v -x -e X.exr -e X.exr.ckpt -e X.json -e out.txt -e err.txt)
 [ -z "$leftover" ] || fail "files left in $dir: $leftover"
 echo "ok: interrupted after $exr_spp spp, exit status 130"

@@ -18,6 +18,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "iris/image.hpp"
@@ -94,6 +97,47 @@ public:
 
     /// \brief Pixel `i`'s exact sums.
     const exact_xyz& sum(std::size_t i) const noexcept { return m_sum[i]; }
+
+    /// \brief The whole state, pixel by pixel (row-major): what a checkpoint stores and
+    /// what ranks exchange. `from_parts` rebuilds a film from it.
+    std::span<const exact_xyz> sums() const noexcept { return m_sum; }
+    std::span<const std::uint32_t> counts() const noexcept { return m_count; }
+    std::span<const std::uint32_t> dropped_counts() const noexcept { return m_dropped; }
+
+    /// \brief A film with the given state. \throws std::invalid_argument if a part does not
+    /// have width · height entries or a pixel has more dropped samples than samples.
+    static film from_parts(int width, int height, std::vector<exact_xyz> sums, std::vector<std::uint32_t> counts,
+                           std::vector<std::uint32_t> dropped) {
+        film f(0, 0);
+        const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+        if (width < 0 || height < 0 || sums.size() != n || counts.size() != n || dropped.size() != n)
+            throw std::invalid_argument("film::from_parts: the parts do not have width x height entries");
+        for (std::size_t i = 0; i < n; ++i)
+            if (dropped[i] > counts[i]) throw std::invalid_argument("film::from_parts: more dropped samples than samples");
+        f.m_width = width;
+        f.m_height = height;
+        f.m_sum = std::move(sums);
+        f.m_count = std::move(counts);
+        f.m_dropped = std::move(dropped);
+        return f;
+    }
+
+    /// \brief Add another film's samples to this one's, exactly: the result is the film
+    /// that took both films' samples (in any order). \throws std::invalid_argument for
+    /// another size, std::overflow_error if a pixel's sample count would pass 2^32 − 1.
+    void merge(const film& other) {
+        if (other.m_width != m_width || other.m_height != m_height)
+            throw std::invalid_argument("film::merge: the films differ in size");
+        for (std::size_t i = 0; i < m_sum.size(); ++i)
+            if (other.m_count[i] > UINT32_MAX - m_count[i]) throw std::overflow_error("film::merge: more than 2^32 - 1 samples in a pixel");
+        for (std::size_t i = 0; i < m_sum.size(); ++i) {
+            m_sum[i].x += other.m_sum[i].x;
+            m_sum[i].y += other.m_sum[i].y;
+            m_sum[i].z += other.m_sum[i].z;
+            m_count[i] += other.m_count[i];
+            m_dropped[i] += other.m_dropped[i];
+        }
+    }
 
     /// \brief The running mean as linear sRGB.
     image to_image() const {

@@ -98,7 +98,7 @@ constexpr auto tile_function() {
 #endif
 }
 
-/// \brief Run `opt.spp` passes. `make_distribution(i)` returns {α_i, distribution} for
+/// \brief Run passes [opt.start_spp, opt.spp) — this rank's share of them. `make_distribution(i)` returns {α_i, distribution} for
 /// sample index i (built once per pass, shared read-only by all threads), with the hot
 /// loop compiled for instruction set I.
 template <isa I, class Integrator, class Tracer, class DistributionFor>
@@ -117,34 +117,38 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
     using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
     constexpr auto tile = tile_function<I, Integrator, Tracer, distribution>();
 
-    for (int i = 0; i < opt.spp; ++i) {
+    // Rounds of `ranks` passes from start_spp on; this rank renders pass round + rank.
+    for (int round = opt.start_spp; round < opt.spp; round += opt.ranks) {
         if (h.cancel && h.cancel->load()) {
             st.interrupted = true;
             break;
         }
-        const auto pass_start = std::chrono::steady_clock::now();  // time passes, not the hooks
-        const auto [alpha, dist] = distribution_for(i);
-        const std::uint64_t before = f.dropped();
-        arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
-                const int slot = tbb::this_task_arena::current_thread_index();
-                used.fetch_or(std::uint64_t{1} << std::clamp(slot, 0, 63), std::memory_order_relaxed);
-                if (h.on_tile) h.on_tile(slot);
-                for (int t = r.begin(); t != r.end(); ++t) {
-                    const int x0 = (t % tiles_x) * ts, y0 = (t / tiles_x) * ts;
-                    const tile_job job{x0, y0, std::min(x0 + ts, w), std::min(y0 + ts, ht), w, sampler,
-                                       static_cast<std::uint64_t>(i)};
-                    tile_rays[static_cast<std::size_t>(t)] = tile(integ, tracer, cam, job, dist, alpha, f);
-                }
+        const int i = round + opt.rank;
+        if (i < opt.spp) {
+            const auto pass_start = std::chrono::steady_clock::now();  // time passes, not the hooks
+            const auto [alpha, dist] = distribution_for(i);
+            const std::uint64_t before = f.dropped();
+            arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
+                    const int slot = tbb::this_task_arena::current_thread_index();
+                    used.fetch_or(std::uint64_t{1} << std::clamp(slot, 0, 63), std::memory_order_relaxed);
+                    if (h.on_tile) h.on_tile(slot);
+                    for (int t = r.begin(); t != r.end(); ++t) {
+                        const int x0 = (t % tiles_x) * ts, y0 = (t / tiles_x) * ts;
+                        const tile_job job{x0, y0, std::min(x0 + ts, w), std::min(y0 + ts, ht), w, sampler,
+                                           static_cast<std::uint64_t>(i)};
+                        tile_rays[static_cast<std::size_t>(t)] = tile(integ, tracer, cam, job, dist, alpha, f);
+                    }
+                });
             });
-        });
-        for (auto r : tile_rays) st.rays += r;  // fixed reduction order
-        st.spp_done = i + 1;
-        st.alpha = alpha;
-        st.threads_used = std::popcount(used.load(std::memory_order_relaxed));
-        st.samples += static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(ht);
-        st.nan_inf += f.dropped() - before;
-        st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
+            for (auto r : tile_rays) st.rays += r;  // fixed reduction order
+            st.alpha = alpha;
+            st.threads_used = std::popcount(used.load(std::memory_order_relaxed));
+            st.samples += static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(ht);
+            st.nan_inf += f.dropped() - before;
+            st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
+        }
+        st.spp_done = std::min(round + opt.ranks, opt.spp);
         if (h.on_pass && !h.on_pass(f, st)) break;
     }
 }

@@ -86,6 +86,10 @@ void validate(const options& o) {
         throw std::invalid_argument(fmt::format("unknown estimator '{}' (expected nee-mis or bsdf-only)", o.estimator));
     if (!parse_sampler(o.sampler))
         throw std::invalid_argument(fmt::format("unknown sampler '{}' (expected independent, sobol or zsobol)", o.sampler));
+    if (o.start_spp < 0 || o.start_spp > o.spp)
+        throw std::invalid_argument(fmt::format("start spp must be in 0..spp ({}), got {}", o.spp, o.start_spp));
+    if (o.ranks < 1 || o.rank < 0 || o.rank >= o.ranks)
+        throw std::invalid_argument(fmt::format("rank {} of {} ranks is not in 0..ranks-1", o.rank, o.ranks));
 }
 
 }  // namespace
@@ -97,8 +101,10 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     const int w = opt.width > 0 ? opt.width : scene.camera.width;
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
+    if (opt.start_spp > 0 && (out.width() != w || out.height() != ht))
+        throw std::invalid_argument(fmt::format("the film to resume is {}x{}, the render {}x{}", out.width(), out.height(), w, ht));
     const embree::intersector tracer(scene);
-    try {
+    if (opt.start_spp == 0) try {
         out = film(w, ht);
     } catch (const std::bad_alloc&) {
         const double bytes = static_cast<double>(w) * static_cast<double>(ht) * static_cast<double>(film::bytes_per_pixel);
@@ -111,6 +117,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.width = w;
     st.height = ht;
     st.spp_total = opt.spp;
+    st.spp_done = opt.start_spp;
     st.isa = isa_names[static_cast<std::size_t>(chosen)];
     st.sampler = opt.sampler;
     const render_fn fn = find_render(opt.estimator, opt.preset, chosen);

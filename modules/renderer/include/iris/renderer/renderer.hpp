@@ -45,6 +45,17 @@ struct options {
     /// cheaper; docs/results.md#samplers), "zsobol" or "independent" (iris/render/random.hpp:
     /// the samplers and their dimension layout).
     std::string sampler = "sobol";
+    /// \brief Resume: the film passed to `render` already holds the samples of passes
+    /// [0, start_spp) (a checkpoint's film, iris/renderer/checkpoint.hpp); the render adds
+    /// passes [start_spp, spp) to it. 0: a new film. Every pixel's sums are exact
+    /// (film.hpp), so the result is the same film an uninterrupted render gives.
+    int start_spp = 0;
+    /// \brief Share the passes between `ranks` processes (MPI): this one renders the passes
+    /// i with i mod ranks = rank, one per round of `ranks` passes, into its own film; the
+    /// films' exact sum (film::merge) is the single-process film. The hooks' `on_pass`
+    /// runs after every round on every rank, even a rank without a pass in the last one.
+    int rank = 0;
+    int ranks = 1;
 };
 
 /// \brief Where a render is: passed to the hooks and returned at the end.
@@ -56,18 +67,20 @@ struct status {
     int width = 0, height = 0;
     int threads = 0;               ///< worker threads the render may use (its arena's size)
     int threads_used = 0;          ///< of those, how many rendered at least one tile
-    float alpha = 1.0f;            ///< α of the last complete pass (sample index spp_done − 1)
-    int spp_done = 0;              ///< complete passes (every pixel has this many samples)
+    float alpha = 1.0f;            ///< α of the last pass this rank rendered (sample index spp_done − 1 for one rank)
+    int spp_done = 0;              ///< complete passes over all ranks (every pixel has this many samples
+                                   ///< once the ranks' films are merged), counting a resumed film's
     int spp_total = 0;
-    double seconds = 0.0;          ///< wall-clock time spent in passes
-    std::uint64_t samples = 0;
-    std::uint64_t rays = 0;
-    std::uint64_t nan_inf = 0;     ///< non-finite samples dropped from the film
+    double seconds = 0.0;          ///< wall-clock time spent in passes (by this call)
+    std::uint64_t samples = 0;     ///< taken by this call (this rank; not a resumed film's)
+    std::uint64_t rays = 0;        ///< traced by this call (this rank)
+    std::uint64_t nan_inf = 0;     ///< samples this call dropped from the film (non-finite, out of range)
     bool interrupted = false;
 };
 
 struct hooks {
-    /// \brief After every complete pass. Return false to stop after this pass.
+    /// \brief After every complete pass (with ranks > 1: after every round, on every rank).
+    /// Return false to stop after this pass.
     std::function<bool(const film&, const status&)> on_pass;
     /// \brief Checked between passes; a set flag stops the render after the current pass.
     const std::atomic<bool>* cancel = nullptr;
@@ -77,9 +90,11 @@ struct hooks {
     std::function<void(int slot)> on_tile;
 };
 
-/// \brief Render `scene` progressively into a new film. \throws std::invalid_argument for
-/// an unknown preset or bad options (spp ≤ 0, nthold < 1, size ≤ 0), with a message that
-/// lists what is accepted; std::runtime_error if the ray tracer cannot be built.
+/// \brief Render `scene` progressively into a new film (`opt.start_spp` = 0) or on into
+/// `out` (resume). \throws std::invalid_argument for an unknown preset or bad options
+/// (spp ≤ 0, nthold < 1, size ≤ 0, a resumed film of another size, rank ∉ [0, ranks)),
+/// with a message that lists what is accepted; std::runtime_error if the ray tracer cannot
+/// be built.
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h = {});
 
 /// \brief The instruction sets of the hot loop this build and CPU can run, narrowest

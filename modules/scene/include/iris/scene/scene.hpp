@@ -9,6 +9,7 @@
 /// an emitter — throws `iris::scene::error` naming the file, the line and the JSON
 /// pointer of the value and what was expected. Nothing else is thrown for bad input.
 
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -44,6 +45,13 @@ iris::scene_desc load_scene(std::string_view name_or_path);
 /// \brief The document (description, recipes) behind `load_scene`, for tools that report
 /// on a scene without meshing it.
 scene_document load_scene_document(std::string_view name_or_path);
+
+/// \brief A 64-bit fingerprint (FNV-1a) of everything a render of `scene` depends on: the
+/// camera, the spectral domain, every material, emitter, triangle and the environment, as
+/// their exact bits — not how the scene was written (a reformatted file is the same scene,
+/// a moved vertex is another). Stable across runs, builds and machines of one byte order;
+/// a checkpoint stores it (iris/renderer/checkpoint.hpp).
+std::uint64_t fingerprint(const iris::scene_desc& scene);
 
 /// \brief A shape that is not what its material needs.
 struct shape_problem {

@@ -1,0 +1,218 @@
+// Checkpoint files (format in iris/renderer/checkpoint.hpp).
+#include "iris/renderer/checkpoint.hpp"
+
+#include <bit>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <span>
+#include <map>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "iris/exr/exr.hpp"
+
+namespace iris::renderer {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "checkpoints are little-endian");
+static_assert(sizeof(exact_xyz) == 48);
+
+constexpr char magic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', 'T'};
+constexpr std::uint32_t format_version = 1;
+constexpr int max_side = 16384;
+
+std::uint64_t fnv1a(const char* data, std::size_t n) noexcept {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 0x100000001b3ull;
+    return h;
+}
+
+/// \brief The key's fields as (name, value) in a fixed order: the header and the mismatch
+/// message both use it.
+std::vector<std::pair<std::string, std::string>> fields(const checkpoint_key& k) {
+    return {{"version", k.version},
+            {"scene", k.scene},
+            {"scene_fingerprint", fmt::format("{:016x}", k.scene_fingerprint)},
+            {"preset", k.preset},
+            {"estimator", k.estimator},
+            {"sampler", k.sampler},
+            {"seed", std::to_string(k.seed)},
+            {"nthold", std::to_string(k.nthold)},
+            {"max_depth", std::to_string(k.max_depth)},
+            {"spp", std::to_string(k.spp)},
+            {"width", std::to_string(k.width)},
+            {"height", std::to_string(k.height)}};
+}
+
+template <class T>
+void put(std::string& out, const T& v) {
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T>
+void put_all(std::string& out, std::span<const T> v) {
+    out.append(reinterpret_cast<const char*>(v.data()), v.size_bytes());
+}
+
+/// \brief Reads the file's bytes in order; every read is bounds-checked.
+class reader {
+public:
+    reader(const std::string& bytes, std::string name) : m_bytes(bytes), m_name(std::move(name)) {}
+    [[noreturn]] void fail(const std::string& why) const {
+        throw checkpoint_error(fmt::format("checkpoint '{}' is corrupt or not a checkpoint: {}", m_name, why));
+    }
+    std::string_view take(std::size_t n, const char* what) {
+        if (n > m_bytes.size() - m_pos) fail(fmt::format("truncated in {} ({} bytes)", what, m_bytes.size()));
+        const std::string_view v(m_bytes.data() + m_pos, n);
+        m_pos += n;
+        return v;
+    }
+    template <class T>
+    T get(const char* what) {
+        T v;
+        std::memcpy(&v, take(sizeof v, what).data(), sizeof v);
+        return v;
+    }
+    template <class T>
+    std::vector<T> get_all(std::size_t n, const char* what) {
+        std::vector<T> v(n);
+        const auto b = take(n * sizeof(T), what);
+        std::memcpy(v.data(), b.data(), b.size());
+        return v;
+    }
+    std::size_t position() const noexcept { return m_pos; }
+
+private:
+    const std::string& m_bytes;
+    std::string m_name;
+    std::size_t m_pos = 0;
+};
+
+template <class T>
+T parse_number(const reader& r, const std::map<std::string, std::string>& h, const std::string& name, T lo, T hi) {
+    const auto it = h.find(name);
+    if (it == h.end()) r.fail(fmt::format("the header has no '{}'", name));
+    T v{};
+    const auto& s = it->second;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || end != s.data() + s.size() || v < lo || v > hi)
+        r.fail(fmt::format("header field {}='{}' is not a number in {}..{}", name, s, lo, hi));
+    return v;
+}
+
+}  // namespace
+
+void write_checkpoint(const std::filesystem::path& path, const checkpoint& c) {
+    const film& f = c.image;
+    std::string header;
+    for (const auto& [k, v] : fields(c.key)) header += k + "=" + v + "\n";
+    header += fmt::format("spp_done={}\nsamples={}\nrays={}\nseconds={}\n", c.spp_done, c.samples, c.rays, c.seconds);
+    std::string out;
+    out.reserve(24 + header.size() + f.sums().size_bytes() + 2 * f.counts().size_bytes() + 8);
+    out.append(magic, sizeof magic);
+    put(out, format_version);
+    put(out, static_cast<std::uint32_t>(header.size()));
+    out += header;
+    put_all(out, f.sums());
+    put_all(out, f.counts());
+    put_all(out, f.dropped_counts());
+    put(out, fnv1a(out.data(), out.size()));
+    try {
+        exr::write_atomically(path, [&](const std::filesystem::path& tmp) {
+            std::ofstream o(tmp, std::ios::binary);
+            o.write(out.data(), static_cast<std::streamsize>(out.size()));
+            o.flush();
+            if (!o) throw checkpoint_error(fmt::format("cannot write checkpoint '{}'", path.string()));
+        });
+    } catch (const checkpoint_error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw checkpoint_error(fmt::format("cannot write checkpoint '{}': {}", path.string(), e.what()));
+    }
+}
+
+checkpoint read_checkpoint(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw checkpoint_error(fmt::format("cannot read checkpoint '{}': no such file or not readable", path.string()));
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw checkpoint_error(fmt::format("cannot read checkpoint '{}'", path.string()));
+    reader r(bytes, path.string());
+
+    if (r.take(sizeof magic, "the magic") != std::string_view(magic, sizeof magic)) r.fail("it does not start with IRISCKPT");
+    if (const auto v = r.get<std::uint32_t>("the format version"); v != format_version)
+        r.fail(fmt::format("format version {}, this iris reads {}", v, format_version));
+    const auto header_length = r.get<std::uint32_t>("the header length");
+    if (header_length > (1u << 16)) r.fail(fmt::format("a header of {} bytes", header_length));
+    std::map<std::string, std::string> h;
+    {
+        std::string_view text = r.take(header_length, "the header");
+        while (!text.empty()) {
+            const auto nl = text.find('\n');
+            if (nl == std::string_view::npos) r.fail("the header's last line has no newline");
+            const std::string_view line = text.substr(0, nl);
+            text.remove_prefix(nl + 1);
+            const auto eq = line.find('=');
+            if (eq == std::string_view::npos) r.fail(fmt::format("header line '{}' is not key=value", line));
+            h[std::string(line.substr(0, eq))] = std::string(line.substr(eq + 1));
+        }
+    }
+    checkpoint c;
+    auto text = [&](const std::string& name) {
+        const auto it = h.find(name);
+        if (it == h.end()) r.fail(fmt::format("the header has no '{}'", name));
+        return it->second;
+    };
+    c.key.version = text("version");
+    c.key.scene = text("scene");
+    {
+        const std::string s = text("scene_fingerprint");
+        const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), c.key.scene_fingerprint, 16);
+        if (ec != std::errc() || end != s.data() + s.size() || s.size() != 16)
+            r.fail(fmt::format("header field scene_fingerprint='{}' is not 16 hex digits", s));
+    }
+    c.key.preset = text("preset");
+    c.key.estimator = text("estimator");
+    c.key.sampler = text("sampler");
+    c.key.seed = parse_number<std::uint64_t>(r, h, "seed", 0, UINT64_MAX);
+    c.key.nthold = parse_number<int>(r, h, "nthold", 1, INT32_MAX);
+    c.key.max_depth = parse_number<int>(r, h, "max_depth", 1, INT32_MAX);
+    c.key.spp = parse_number<int>(r, h, "spp", 1, INT32_MAX);
+    c.key.width = parse_number<int>(r, h, "width", 1, max_side);
+    c.key.height = parse_number<int>(r, h, "height", 1, max_side);
+    c.spp_done = parse_number<int>(r, h, "spp_done", 0, c.key.spp);
+    c.samples = parse_number<std::uint64_t>(r, h, "samples", 0, UINT64_MAX);
+    c.rays = parse_number<std::uint64_t>(r, h, "rays", 0, UINT64_MAX);
+    c.seconds = parse_number<double>(r, h, "seconds", 0.0, 1e12);
+
+    const std::size_t pixels = static_cast<std::size_t>(c.key.width) * static_cast<std::size_t>(c.key.height);
+    const std::size_t expected = r.position() + pixels * (sizeof(exact_xyz) + 2 * sizeof(std::uint32_t)) + 8;
+    if (bytes.size() != expected)
+        r.fail(fmt::format("{} bytes, a {}x{} checkpoint has {}", bytes.size(), c.key.width, c.key.height, expected));
+    auto sums = r.get_all<exact_xyz>(pixels, "the sums");
+    auto counts = r.get_all<std::uint32_t>(pixels, "the sample counts");
+    auto dropped = r.get_all<std::uint32_t>(pixels, "the dropped counts");
+    const std::size_t body = r.position();
+    if (r.get<std::uint64_t>("the checksum") != fnv1a(bytes.data(), body)) r.fail("checksum mismatch");
+    for (std::size_t i = 0; i < pixels; ++i) {
+        if (counts[i] != static_cast<std::uint32_t>(c.spp_done))
+            r.fail(fmt::format("pixel {} has {} samples, spp_done is {}", i, counts[i], c.spp_done));
+        if (dropped[i] > counts[i]) r.fail(fmt::format("pixel {} has more dropped samples than samples", i));
+    }
+    c.image = film::from_parts(c.key.width, c.key.height, std::move(sums), std::move(counts), std::move(dropped));
+    return c;
+}
+
+std::optional<std::string> key_mismatch(const checkpoint_key& stored, const checkpoint_key& wanted) {
+    const auto a = fields(stored), b = fields(wanted);
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].second != b[i].second)
+            return fmt::format("its {} is {}, this render's is {}", a[i].first, a[i].second, b[i].second);
+    return std::nullopt;
+}
+
+}  // namespace iris::renderer

@@ -1,0 +1,113 @@
+// fingerprint(): the scene's content as exact bits through FNV-1a (64 bit).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <type_traits>
+#include <variant>
+
+#include "iris/scene/scene.hpp"
+
+namespace iris::scene {
+namespace {
+
+class fnv1a {
+public:
+    void bytes(const void* data, std::size_t n) noexcept {
+        const auto* b = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < n; ++i) m_h = (m_h ^ b[i]) * 0x100000001b3ull;
+    }
+    template <class T>
+        requires std::is_arithmetic_v<T>
+    void operator()(T v) noexcept {
+        bytes(&v, sizeof v);
+    }
+    void operator()(std::string_view s) noexcept {
+        (*this)(s.size());
+        bytes(s.data(), s.size());
+    }
+    void operator()(const glm::vec3& v) noexcept {
+        (*this)(v.x);
+        (*this)(v.y);
+        (*this)(v.z);
+    }
+    template <class T>
+    void operator()(std::span<const T> v) noexcept {
+        (*this)(v.size());
+        for (const auto& x : v) (*this)(x);
+    }
+    void operator()(const tabulated_spectrum& s) noexcept {
+        (*this)(s.wavelengths());
+        (*this)(s.values());
+    }
+    std::uint64_t value() const noexcept { return m_h; }
+
+private:
+    std::uint64_t m_h = 0xcbf29ce484222325ull;
+};
+
+}  // namespace
+
+std::uint64_t fingerprint(const iris::scene_desc& scene) {
+    fnv1a h;
+    const auto& c = scene.camera;
+    h(c.position);
+    h(c.look_at);
+    h(c.up);
+    h(c.fov_y_degrees);
+    h(c.width);
+    h(c.height);
+    h(scene.lambda_min);
+    h(scene.lambda_max);
+    h(scene.materials.size());
+    for (const auto& m : scene.materials) {
+        h(m.index());
+        std::visit(
+            [&](const auto& x) {
+                using T = std::decay_t<decltype(x)>;
+                if constexpr (std::is_same_v<T, material::dielectric>) {
+                    h(x.roughness);
+                    h(x.ior.index());
+                    std::visit(
+                        [&](const auto& n) {
+                            using N = std::decay_t<decltype(n)>;
+                            if constexpr (std::is_same_v<N, constant_ior>) h(n.value);
+                            else if constexpr (std::is_same_v<N, cauchy_ior>) {
+                                h(n.a);
+                                h(n.b_um2);
+                            } else {
+                                for (double v : {n.b1, n.b2, n.b3, n.c1, n.c2, n.c3}) h(v);
+                            }
+                        },
+                        x.ior);
+                } else {
+                    h(x.reflectance);
+                }
+            },
+            m);
+    }
+    h(scene.emitters.size());
+    for (const auto& e : scene.emitters) {
+        h(std::string_view(e.spd_name));
+        h(e.radiance);
+        h(e.two_sided);
+    }
+    h(scene.shapes.size());
+    for (const auto& s : scene.shapes) {
+        h(s.mesh.positions.size());
+        for (const auto& p : s.mesh.positions) h(p);
+        h(s.mesh.triangles.size());
+        for (const auto& t : s.mesh.triangles) h.bytes(t.data(), sizeof t);
+        h(s.material);
+        h(s.emitter.has_value());
+        h(s.emitter.value_or(0));
+    }
+    h(scene.environment.has_value());
+    if (scene.environment) {
+        h(std::string_view(scene.environment->spd_name));
+        h(scene.environment->radiance);
+    }
+    return h.value();
+}
+
+}  // namespace iris::scene

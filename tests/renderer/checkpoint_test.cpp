@@ -1,0 +1,234 @@
+// Checkpoints (iris/renderer/checkpoint.hpp) and the renderer's resume and rank options:
+// a render split at a pass, or over ranks, gives the uninterrupted film bit for bit; a
+// checkpoint file reads back to what was written and every kind of damage is refused.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <iris/renderer/checkpoint.hpp>
+#include <iris/renderer/renderer.hpp>
+#include <iris/scene/scene.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using iris::renderer::checkpoint;
+using iris::renderer::checkpoint_error;
+
+iris::renderer::options small(const std::string& sampler) {
+    iris::renderer::options o;
+    o.preset = "paper";
+    o.spp = 9;
+    o.width = 24;
+    o.height = 16;
+    o.threads = 2;
+    o.nthold = 4;  // relaxation ends inside the render: α differs between the parts
+    o.sampler = sampler;
+    return o;
+}
+
+void expect_identical(const iris::film& a, const iris::film& b) {
+    ASSERT_EQ(a.sums().size(), b.sums().size());
+    for (std::size_t i = 0; i < a.sums().size(); ++i) {
+        ASSERT_EQ(a.sum(i), b.sum(i)) << "pixel " << i;
+        ASSERT_EQ(a.samples(i), b.samples(i)) << "pixel " << i;
+    }
+    ASSERT_EQ(a.dropped(), b.dropped());
+}
+
+// Resume: passes [0, 4) then [4, 9) into the same film equal passes [0, 9) in one call,
+// for every sampler (zsobol's points depend on the total spp). Would catch a resumed
+// render restarting at pass 0 (12 samples per pixel), replacing the film, or a sample
+// index off by one (other sums).
+TEST(Resume, ARenderGoesOnFromItsFilmToTheUninterruptedOne) {
+    const auto scene = iris::scene::builtin_scene("prism");
+    for (const std::string sampler : {"sobol", "zsobol", "independent"}) {
+        SCOPED_TRACE(sampler);
+        iris::film whole(1, 1), parts(1, 1);
+        (void)iris::renderer::render(scene, small(sampler), whole);
+        auto o = small(sampler);
+        iris::renderer::hooks stop_after_4;
+        stop_after_4.on_pass = [](const iris::film&, const iris::renderer::status& st) { return st.spp_done < 4; };
+        const auto first = iris::renderer::render(scene, o, parts, stop_after_4);
+        ASSERT_EQ(first.spp_done, 4);
+        o.start_spp = 4;
+        const auto second = iris::renderer::render(scene, o, parts);
+        EXPECT_EQ(second.spp_done, 9);
+        EXPECT_EQ(second.samples, 5u * 24 * 16);
+        expect_identical(parts, whole);
+    }
+}
+
+// Ranks: the films of ranks 0..N-1 (each its passes i ≡ rank mod N) merged equal the
+// single film, for N = 2 and 3 (9 passes: the last round of 3 is complete, of 2 not), and
+// from a resumed film. Would catch a rank rendering another's pass or none.
+TEST(Resume, TheRanksFilmsSumToTheSingleProcessFilm) {
+    const auto scene = iris::scene::builtin_scene("prism");
+    iris::film whole(1, 1);
+    (void)iris::renderer::render(scene, small("sobol"), whole);
+    for (int ranks : {2, 3}) {
+        for (int start : {0, 5}) {
+            SCOPED_TRACE(ranks * 10 + start);
+            iris::film sum(1, 1);
+            if (start > 0) {
+                auto o = small("sobol");
+                o.spp = 9;
+                iris::renderer::hooks stop;
+                stop.on_pass = [&](const iris::film&, const iris::renderer::status& st) { return st.spp_done < start; };
+                (void)iris::renderer::render(scene, o, sum, stop);
+            } else {
+                sum = iris::film(24, 16);
+            }
+            for (int r = 0; r < ranks; ++r) {
+                auto o = small("sobol");
+                o.rank = r;
+                o.ranks = ranks;
+                o.start_spp = start;
+                iris::film part(24, 16);
+                const auto st = iris::renderer::render(scene, o, part);
+                EXPECT_EQ(st.spp_done, 9);
+                sum.merge(part);
+            }
+            expect_identical(sum, whole);
+        }
+    }
+    auto o = small("sobol");
+    o.rank = 2;
+    o.ranks = 2;
+    iris::film f(1, 1);
+    EXPECT_THROW((void)iris::renderer::render(scene, o, f), std::invalid_argument);
+    o.rank = 0;
+    o.start_spp = 3;  // a film of the wrong size to resume
+    EXPECT_THROW((void)iris::renderer::render(scene, o, f), std::invalid_argument);
+}
+
+class CheckpointFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() /
+              ("iris_checkpoint_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        path = dir / "x.exr.ckpt";
+        c.key = {"0.1.0", "prism", 0x0123456789abcdefull, "paper", "nee-mis", "zsobol", 7, 4, 32, 9, 24, 16};
+        auto o = small("zsobol");
+        o.seed = 7;
+        iris::renderer::hooks stop;
+        stop.on_pass = [](const iris::film&, const iris::renderer::status& st) { return st.spp_done < 3; };
+        (void)iris::renderer::render(iris::scene::builtin_scene("prism"), o, c.image, stop);
+        c.spp_done = 3;
+        c.samples = 3 * 24 * 16;
+        c.rays = 12345;
+        c.seconds = 0.125;
+        iris::renderer::write_checkpoint(path, c);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string bytes() const {
+        std::ifstream in(path, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+    void rewrite(const std::string& b) const { std::ofstream(path, std::ios::binary) << b; }
+    /// \brief read_checkpoint must throw checkpoint_error whose message contains `what`.
+    void expect_refused(const std::string& what) const {
+        try {
+            (void)iris::renderer::read_checkpoint(path);
+            ADD_FAILURE() << "read, expected an error containing '" << what << "'";
+        } catch (const checkpoint_error& e) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    }
+    fs::path dir, path;
+    checkpoint c;
+};
+
+// Written and read back: the same key, counters and film; no temporary left beside it.
+TEST_F(CheckpointFile, ReadsBackWhatWasWritten) {
+    const checkpoint r = iris::renderer::read_checkpoint(path);
+    EXPECT_EQ(r.key, c.key);
+    EXPECT_EQ(r.spp_done, 3);
+    EXPECT_EQ(r.samples, c.samples);
+    EXPECT_EQ(r.rays, 12345u);
+    EXPECT_EQ(r.seconds, 0.125);
+    expect_identical(r.image, c.image);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
+// Damage anywhere is refused with a message saying what: one flipped bit in the sums,
+// the header or the checksum; a truncated or extended file; another magic or version; a
+// missing file. Would catch a reader that trusts the file (garbage image) or crashes.
+TEST_F(CheckpointFile, DamagedFilesAreRefusedWithTheReason) {
+    const std::string good = bytes();
+    const std::size_t header_end = good.find("seconds=");
+    ASSERT_NE(header_end, std::string::npos);
+    for (std::size_t at : {good.size() / 2, header_end + 2, good.size() - 3}) {  // a sum, the header, the checksum
+        std::string b = good;
+        b[at] = static_cast<char>(b[at] ^ 0x10);
+        rewrite(b);
+        SCOPED_TRACE(at);
+        expect_refused("corrupt");
+    }
+    rewrite(good.substr(0, good.size() - 1));
+    expect_refused("bytes, a 24x16 checkpoint has");
+    rewrite(good + "x");
+    expect_refused("bytes, a 24x16 checkpoint has");
+    rewrite(good.substr(0, 10));
+    expect_refused("truncated");
+    rewrite("PNG" + good.substr(3));
+    expect_refused("does not start with IRISCKPT");
+    {
+        std::string b = good;
+        b[8] = 2;  // format version 2
+        rewrite(b);
+        expect_refused("format version 2");
+    }
+    {
+        std::string b = good;  // a header field that is not a number
+        const auto at = b.find("nthold=4");
+        b[at + 7] = 'x';
+        rewrite(b);
+        expect_refused("nthold='x' is not a number");
+    }
+    fs::remove(path);
+    expect_refused("no such file");
+}
+
+// A film whose counts are not spp_done everywhere (a checkpoint from a broken writer) is
+// refused: resuming it would give a wrong image silently.
+TEST_F(CheckpointFile, AFilmThatDoesNotHoldSppDoneSamplesIsRefused) {
+    c.spp_done = 2;
+    iris::renderer::write_checkpoint(path, c);
+    expect_refused("pixel 0 has 3 samples, spp_done is 2");
+}
+
+// key_mismatch names the first field that differs, with both values.
+TEST(CheckpointKey, AMismatchNamesTheField) {
+    const iris::renderer::checkpoint_key a{"0.1.0", "prism", 1, "paper", "nee-mis", "sobol", 7, 4, 32, 9, 24, 16};
+    EXPECT_FALSE(iris::renderer::key_mismatch(a, a));
+    auto b = a;
+    b.seed = 8;
+    EXPECT_EQ(iris::renderer::key_mismatch(a, b).value_or(""), "its seed is 7, this render's is 8");
+    b = a;
+    b.scene_fingerprint = 2;
+    EXPECT_EQ(iris::renderer::key_mismatch(a, b).value_or(""),
+              "its scene_fingerprint is 0000000000000001, this render's is 0000000000000002");
+    b = a;
+    b.width = 25;
+    EXPECT_EQ(iris::renderer::key_mismatch(a, b).value_or(""), "its width is 24, this render's is 25");
+}
+
+// The scene fingerprint: equal for the same scene loaded twice, different for another
+// scene and for one vertex moved by one ulp.
+TEST(CheckpointKey, TheSceneFingerprintSeesOneVertexMove) {
+    auto s = iris::scene::builtin_scene("prism");
+    const auto f = iris::scene::fingerprint(s);
+    EXPECT_EQ(iris::scene::fingerprint(iris::scene::builtin_scene("prism")), f);
+    EXPECT_NE(iris::scene::fingerprint(iris::scene::builtin_scene("cornell")), f);
+    auto& p = s.shapes.back().mesh.positions.back();
+    p.x = std::nextafter(p.x, 1e9f);
+    EXPECT_NE(iris::scene::fingerprint(s), f);
+}
+
+}  // namespace
