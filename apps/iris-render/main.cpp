@@ -149,6 +149,9 @@ struct run_totals {
     std::uint64_t samples = 0, rays = 0;
     double seconds = 0.0;
     int ranks = 1, resumed_from = 0;
+    int gathers = 0;              ///< reductions of the ranks' films to rank 0
+    double gather_seconds = 0.0;  ///< their wall-clock time on rank 0 (with the wait for the slowest rank)
+    std::uint64_t gather_bytes = 0;  ///< film bytes each rank sends per gather
 };
 
 void write_stats(const iris::scene_desc& s, const args& a, iris::renderer::status st, const run_totals& t) {
@@ -178,6 +181,9 @@ void write_stats(const iris::scene_desc& s, const args& a, iris::renderer::statu
                         {"interrupted", st.interrupted},
                         {"ranks", t.ranks},
                         {"resumed_from_spp", t.resumed_from},
+                        {"gathers", t.gathers},
+                        {"gather_seconds", t.gather_seconds},
+                        {"gather_bytes", t.gather_bytes},
                         {"version", std::string(iris::version)}};
     iris::exr::write_atomically(a.stats, [&](const fs::path& tmp) {
         std::ofstream o(tmp);
@@ -286,7 +292,11 @@ int run_render(const args& a, const ranks_session& mpi) {
     // ranks. Collective.
     const auto save = [&](const iris::film& local, iris::renderer::status st, bool image, bool checkpoint) {
         gather_totals(st);
+        const auto gather_start = std::chrono::steady_clock::now();
         iris::film sum = mpi.reduce(local);
+        ++totals.gathers;
+        totals.gather_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - gather_start).count();
+        totals.gather_bytes = local.sums().size() * iris::film::bytes_per_pixel;
         if (!root) return;
         st.nan_inf = dropped = sum.dropped();
         if (image) write_outputs(scene, a, sum, st);

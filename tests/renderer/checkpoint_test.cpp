@@ -128,7 +128,9 @@ protected:
     void TearDown() override { fs::remove_all(dir); }
     std::string bytes() const {
         std::ifstream in(path, std::ios::binary);
-        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        std::string b(static_cast<std::size_t>(fs::file_size(path)), '\0');
+        in.read(b.data(), static_cast<std::streamsize>(b.size()));
+        return b;
     }
     void rewrite(const std::string& b) const { std::ofstream(path, std::ios::binary) << b; }
     /// \brief read_checkpoint must throw checkpoint_error whose message contains `what`.

@@ -62,7 +62,7 @@ void put_all(std::string& out, std::span<const T> v) {
 /// \brief Reads the file's bytes in order; every read is bounds-checked.
 class reader {
 public:
-    reader(const std::string& bytes, std::string name) : m_bytes(bytes), m_name(std::move(name)) {}
+    reader(std::string_view bytes, std::string name) : m_bytes(bytes), m_name(std::move(name)) {}
     [[noreturn]] void fail(const std::string& why) const {
         throw checkpoint_error(fmt::format("checkpoint '{}' is corrupt or not a checkpoint: {}", m_name, why));
     }
@@ -88,7 +88,7 @@ public:
     std::size_t position() const noexcept { return m_pos; }
 
 private:
-    const std::string& m_bytes;
+    std::string_view m_bytes;
     std::string m_name;
     std::size_t m_pos = 0;
 };
@@ -138,10 +138,17 @@ void write_checkpoint(const std::filesystem::path& path, const checkpoint& c) {
 
 checkpoint read_checkpoint(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw checkpoint_error(fmt::format("cannot read checkpoint '{}': no such file or not readable", path.string()));
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw checkpoint_error(fmt::format("cannot read checkpoint '{}'", path.string()));
-    reader r(bytes, path.string());
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!in || ec) throw checkpoint_error(fmt::format("cannot read checkpoint '{}': no such file or not readable", path.string()));
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+        throw checkpoint_error(fmt::format("cannot read checkpoint '{}'", path.string()));
+    return parse_checkpoint(bytes, path.string());
+}
+
+checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
+    reader r(bytes, name);
 
     if (r.take(sizeof magic, "the magic") != std::string_view(magic, sizeof magic)) r.fail("it does not start with IRISCKPT");
     if (const auto v = r.get<std::uint32_t>("the format version"); v != format_version)
@@ -162,9 +169,9 @@ checkpoint read_checkpoint(const std::filesystem::path& path) {
         }
     }
     checkpoint c;
-    auto text = [&](const std::string& name) {
-        const auto it = h.find(name);
-        if (it == h.end()) r.fail(fmt::format("the header has no '{}'", name));
+    auto text = [&](const std::string& field) {
+        const auto it = h.find(field);
+        if (it == h.end()) r.fail(fmt::format("the header has no '{}'", field));
         return it->second;
     };
     c.key.version = text("version");

@@ -28,6 +28,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "iris/render/film.hpp"
 
@@ -70,6 +71,10 @@ void write_checkpoint(const std::filesystem::path& path, const checkpoint& c);
 /// unreadable, not a checkpoint, another format version, truncated or too long, a bad
 /// header field, checksum mismatch, a film inconsistent with spp_done).
 checkpoint read_checkpoint(const std::filesystem::path& path);
+
+/// \brief The same checks on a checkpoint's bytes; `name` names it in messages (the fuzz
+/// target's entry point: fuzz/checkpoint_read_fuzz.cpp).
+checkpoint parse_checkpoint(std::string_view bytes, const std::string& name);
 
 /// \brief The first field in which `stored` differs from `wanted`, as "its seed is 1, this
 /// render's is 2"; nullopt if they are equal.
