@@ -65,6 +65,8 @@ struct ranks_session {
     bool active() const noexcept { return false; }
     iris::film reduce(const iris::film& f) const { return f; }
     int max(int v) const { return v; }
+    double max(double v) const { return v; }
+    double sum(double v) const { return v; }
     std::uint64_t sum(std::uint64_t v) const { return v; }
     double broadcast(double v) const { return v; }
     void abort(int) const {}
@@ -152,6 +154,8 @@ struct run_totals {
     int gathers = 0;              ///< reductions of the ranks' films to rank 0
     double gather_seconds = 0.0;  ///< their wall-clock time on rank 0 (with the wait for the slowest rank)
     std::uint64_t gather_bytes = 0;  ///< film bytes each rank sends per gather
+    double busy_max = 0.0, busy_mean = 0.0;  ///< seconds the ranks spent in their passes: the balance
+    double write_seconds = 0.0;  ///< rank 0's time writing images and checkpoints
 };
 
 void write_stats(const iris::scene_desc& s, const args& a, iris::renderer::status st, const run_totals& t) {
@@ -184,6 +188,9 @@ void write_stats(const iris::scene_desc& s, const args& a, iris::renderer::statu
                         {"gathers", t.gathers},
                         {"gather_seconds", t.gather_seconds},
                         {"gather_bytes", t.gather_bytes},
+                        {"rank_busy_seconds_max", t.busy_max},
+                        {"rank_busy_seconds_mean", t.busy_mean},
+                        {"write_seconds", t.write_seconds},
                         {"version", std::string(iris::version)}};
     iris::exr::write_atomically(a.stats, [&](const fs::path& tmp) {
         std::ofstream o(tmp);
@@ -287,6 +294,8 @@ int run_render(const args& a, const ranks_session& mpi) {
         totals.samples = mpi.sum(st.samples);
         totals.rays = mpi.sum(st.rays);
         totals.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+        totals.busy_max = mpi.max(st.seconds);
+        totals.busy_mean = mpi.sum(st.seconds) / mpi.size();
     };
     // Rank 0 writes the image (if asked) and the checkpoint of the film summed over the
     // ranks. Collective.
@@ -298,12 +307,14 @@ int run_render(const args& a, const ranks_session& mpi) {
         totals.gather_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - gather_start).count();
         totals.gather_bytes = local.sums().size() * iris::film::bytes_per_pixel;
         if (!root) return;
+        const auto write_start = std::chrono::steady_clock::now();
         st.nan_inf = dropped = sum.dropped();
         if (image) write_outputs(scene, a, sum, st);
         if (checkpoint)
             iris::renderer::write_checkpoint(ckpt, {key, st.spp_done, resumed.samples + totals.samples,
                                                     resumed.rays + totals.rays, resumed.seconds + totals.seconds,
                                                     std::move(sum)});
+        totals.write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
     };
 
     iris::renderer::hooks h;

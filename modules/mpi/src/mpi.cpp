@@ -95,6 +95,13 @@ int session::max(int value) const {
     return r;
 }
 
+double session::max(double value) const {
+    if (!m_active) return value;
+    double r = 0;
+    check(MPI_Allreduce(&value, &r, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce (max)");
+    return r;
+}
+
 std::uint64_t session::sum(std::uint64_t value) const {
     if (!m_active) return value;
     std::uint64_t r = 0;

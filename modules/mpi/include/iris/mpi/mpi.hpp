@@ -41,6 +41,7 @@ public:
 
     /// \brief The largest of every rank's `value`, on every rank (a flag raised anywhere).
     int max(int value) const;
+    double max(double value) const;
     /// \brief Sums over the ranks, on every rank.
     std::uint64_t sum(std::uint64_t value) const;
     double sum(double value) const;
