@@ -140,6 +140,23 @@ MUTATIONS = [
        "    return reverse_bits(laine_karras(reverse_bits(v), seed));",
        "    return v ^ seed;")],
      ["render_test", "sampler_render_test"], "Sampler|Sobol"),
+    # issue 14: resume, ranks, checkpoints
+    ("rank-ignored (every rank renders the round's first pass)",
+     [("modules/renderer/src/render_loop.hpp", "        const int i = round + opt.rank;", "        const int i = round;")],
+     ["checkpoint_test", "iris-render"], "Resume|apps.render.mpi"),
+    ("resume-restarts-at-pass-0",
+     [("modules/renderer/src/render_loop.hpp",
+       "    for (int round = opt.start_spp; round < opt.spp; round += opt.ranks) {",
+       "    for (int round = 0; round < opt.spp; round += opt.ranks) {")],
+     ["checkpoint_test", "iris-render"], "Resume|apps.render.resume"),
+    ("checkpoint-checksum-not-checked",
+     [("modules/renderer/src/checkpoint.cpp",
+       "    if (r.get<std::uint64_t>(\"the checksum\") != fnv1a(bytes.data(), body)) r.fail(\"checksum mismatch\");",
+       "    (void)r.get<std::uint64_t>(\"the checksum\");")],
+     ["checkpoint_test", "iris-render"], "CheckpointFile|apps.render.resume"),
+    ("mpi-reduce-skipped (rank 0 writes its own film)",
+     [("apps/iris-render/main.cpp", "        iris::film sum = mpi.reduce(local);", "        iris::film sum = local;")],
+     ["iris-render"], "apps.render.mpi"),
 ]
 
 
