@@ -29,6 +29,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -45,6 +46,9 @@
 #include <iris/version.hpp>
 #if IRIS_HAVE_MPI
 #include <iris/mpi/mpi.hpp>
+#endif
+#if IRIS_HAVE_TEV
+#include <iris/tev/tev.hpp>
 #endif
 
 #include "cli.hpp"
@@ -83,7 +87,9 @@ struct args {
     std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis",
                 sampler = "sobol";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
-    double every_seconds = 0.0, checkpoint_seconds = 600.0;
+    double every_seconds = 0.0, checkpoint_seconds = 600.0, tev_seconds = 0.25;
+    std::string tev;      ///< tev address ("" with --tev alone: the default)
+    bool tev_on = false;
     std::uint64_t seed = 1;
     bool half = false, list_presets = false, list_scenes = false, resume = false, keep_checkpoint = false;
 };
@@ -140,6 +146,21 @@ void write_outputs(const iris::scene_desc& s, const args& a, const iris::film& f
 }
 
 std::string checkpoint_path(const args& a) { return a.out + ".ckpt"; }
+
+#if IRIS_HAVE_TEV
+/// \brief The running image as a tev frame: linear sRGB, named after the output file.
+iris::tev::frame tev_frame(const args& a, const iris::film& f) {
+    const iris::image img = f.to_image();
+    iris::tev::frame fr{fs::path(a.out).filename().string(), img.width(), img.height(), {"R", "G", "B"}, {}};
+    fr.data.reserve(img.pixel_count() * 3);
+    for (const auto& p : img.pixels()) {
+        fr.data.push_back(p.r);
+        fr.data.push_back(p.g);
+        fr.data.push_back(p.b);
+    }
+    return fr;
+}
+#endif
 
 iris::renderer::checkpoint_key key_of(const iris::scene_desc& s, const args& a, int width, int height) {
     return {std::string(iris::version), s.name, iris::scene::fingerprint(s), a.preset, a.estimator, a.sampler, a.seed,
@@ -209,6 +230,17 @@ int run_render(const args& a, const ranks_session& mpi) {
         throw iris::app::usage_error("--every, --every-seconds and --checkpoint-seconds must be >= 0");
     if (a.max_depth < 1 || a.max_depth > 10000) throw iris::app::usage_error("--max-depth must be in 1..10000");
     if (a.out.empty()) throw iris::app::usage_error("an output image is required: -o OUT.exr");
+    if (a.tev_seconds < 0) throw iris::app::usage_error("--tev-seconds must be >= 0");
+#if IRIS_HAVE_TEV
+    iris::tev::address tev_address;
+    if (a.tev_on) try {
+            tev_address = iris::tev::parse_address(a.tev);
+        } catch (const std::invalid_argument& e) {
+            throw iris::app::usage_error(fmt::format("--tev: {}", e.what()));
+        }
+#else
+    if (a.tev_on) throw iris::app::usage_error("--tev: this build has no tev client");
+#endif
     try {
         (void)iris::renderer::config_name(a.preset);
     } catch (const std::invalid_argument& e) {
@@ -285,6 +317,26 @@ int run_render(const args& a, const ranks_session& mpi) {
     auto last_image = run_start, last_checkpoint = run_start;
     bool stopped = false;
 
+#if IRIS_HAVE_TEV
+    // Live view: rank 0 posts the running image to a sender thread (never blocking); one
+    // process posts between passes at most every --tev-seconds, and never more often than
+    // 50 times the conversion's cost (so streaming costs at most 2 % of the render); under
+    // MPI only the images it writes (the ranks' films summed).
+    std::unique_ptr<iris::tev::client> tev;
+    if (a.tev_on && root)
+        tev = std::make_unique<iris::tev::client>(tev_address, [](const std::string& m) {
+            fmt::print(stderr, "iris-render: warning: {}\n", m);
+        });
+    auto last_post = std::chrono::steady_clock::now();
+    double post_cost = 0.0;
+    const auto post = [&](const iris::film& film) {
+        const auto t0 = std::chrono::steady_clock::now();
+        tev->post(tev_frame(a, film));
+        last_post = std::chrono::steady_clock::now();
+        post_cost = std::chrono::duration<double>(last_post - t0).count();
+    };
+#endif
+
     run_totals totals;
     std::uint64_t dropped = 0;  // samples dropped over all ranks and runs (at the last save)
     totals.ranks = mpi.size();
@@ -310,12 +362,16 @@ int run_render(const args& a, const ranks_session& mpi) {
         const auto write_start = std::chrono::steady_clock::now();
         st.nan_inf = dropped = sum.dropped();
         if (image) write_outputs(scene, a, sum, st);
+#if IRIS_HAVE_TEV
+        if (image && tev) post(sum);
+#endif
         if (checkpoint)
             iris::renderer::write_checkpoint(ckpt, {key, st.spp_done, resumed.samples + totals.samples,
                                                     resumed.rays + totals.rays, resumed.seconds + totals.seconds,
                                                     std::move(sum)});
         totals.write_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
     };
+
 
     iris::renderer::hooks h;
     int last_spp = opt.start_spp;
@@ -335,6 +391,11 @@ int run_render(const args& a, const ranks_session& mpi) {
             if (flags & 1) last_image = now;
             last_checkpoint = now;
         }
+#if IRIS_HAVE_TEV
+        if (tev && mpi.size() == 1 && !stopped && st.spp_done < st.spp_total &&
+            std::chrono::duration<double>(now - last_post).count() >= std::max(a.tev_seconds, 50.0 * post_cost))
+            post(f);
+#endif
         if (tty) {
             const double sps = st.seconds > 0 ? static_cast<double>(st.samples) * mpi.size() / st.seconds : 0.0;
             const int done = st.spp_done - opt.start_spp;
@@ -362,6 +423,10 @@ int run_render(const args& a, const ranks_session& mpi) {
     const bool keep = st.interrupted || a.keep_checkpoint;
     save(f, st, true, keep);
     if (!root) return 0;
+#if IRIS_HAVE_TEV
+    if (tev && !tev->flush(5.0))
+        fmt::print(stderr, "iris-render: warning: the last image did not reach tev within 5 s\n");
+#endif
     std::error_code ec;
     if (!keep) fs::remove(ckpt, ec);
     st.nan_inf = dropped;
@@ -424,6 +489,12 @@ int main(int argc, char** argv) {
                    "and when interrupted)")
         ->capture_default_str();
     app.add_flag("--keep-checkpoint", a.keep_checkpoint, "keep the checkpoint after a complete render (default: removed)");
+    auto* tev_option = app.add_option("--tev", a.tev,
+                   "stream the running image to the tev viewer at HOST:PORT (default 127.0.0.1:14158; write "
+                   "--tev=HOST:PORT before the scene, or put --tev after it); if tev is not running the render goes "
+                   "on and connects when it is")
+        ->expected(0, 1);
+    app.add_option("--tev-seconds", a.tev_seconds, "at most one tev update every T seconds")->capture_default_str();
     app.add_flag("--half", a.half, "write half-float EXR (default float)");
     app.add_flag("--list-presets", a.list_presets, "list the sampling presets and exit");
     app.add_flag("--list-scenes", a.list_scenes, "list the built-in scenes and exit");
@@ -439,6 +510,7 @@ int main(int argc, char** argv) {
             return;
         }
         if (a.scene.empty()) throw iris::app::usage_error("a scene is required (see --list-scenes)");
+        a.tev_on = tev_option->count() > 0;
         status = run_render(a, mpi);
     });
     const int rc = iris::app::run(app, argc, argv);
