@@ -124,7 +124,7 @@ std::string eta(double seconds) {
 }
 
 iris::exr::metadata metadata(const iris::scene_desc& s, const args& a, const iris::renderer::status& st) {
-    return {{"iris:scene", s.name},
+    iris::exr::metadata m{{"iris:scene", s.name},
             {"iris:preset", a.preset},
             {"iris:config", st.config_name},
             {"iris:estimator", st.estimator},
@@ -134,6 +134,8 @@ iris::exr::metadata metadata(const iris::scene_desc& s, const args& a, const iri
             {"iris:nthold", std::to_string(a.nthold)},
             {"iris:nan_inf", std::to_string(st.nan_inf)},
             {"iris:version", std::string(iris::version)}};
+    if (!st.windows.empty()) m["iris:windows"] = st.windows;  // centre:width (nm) of each restriction window
+    return m;
 }
 
 /// \brief The image (a pure function of the render's key and spp: no time or machine in
@@ -187,6 +189,7 @@ void write_stats(const iris::scene_desc& s, const args& a, iris::renderer::statu
     nlohmann::json j = {{"scene", s.name},
                         {"preset", a.preset},
                         {"config", st.config_name},
+                        {"windows", st.windows},
                         {"estimator", st.estimator},
                         {"spp", st.spp_done},
                         {"width", st.width},

@@ -10,6 +10,8 @@
 //   iris-spectrum sample --preset P --alpha A --count N [--seed S]
 //                                           CSV lambda,pdf of N draws of C wavelengths
 //   iris-spectrum plot-pdf --preset P -o FILE.png   p_α for α = 0, .25, .5, .75, 1
+//   iris-spectrum windows SCENE | --spd NAME    multibox3's windows by hand and placed from
+//                                           the emitted spectrum, with each channel's share
 //
 // NAME is a built-in illuminant (`iris-spectrum list`) or blackbody:KELVIN.
 // Bad input: one line on stderr, exit status 2.
@@ -26,5 +28,6 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     iris::app::add_spectrum_commands(app);
     iris::app::add_policy_commands(app);
+    iris::app::add_window_commands(app);
     return iris::app::run(app, argc, argv);
 }

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -102,6 +103,11 @@ void plot_spds(const std::vector<std::string>& names, const std::string& out) {
 }
 
 }  // namespace
+
+std::function<double(double)> named_emitter(const std::string& name) {
+    auto spd = std::make_shared<named_spectrum>(resolve(name));
+    return [spd](double l) { return (*spd)(l); };
+}
 
 void add_spectrum_commands(CLI::App& app) {
     // Option storage lives as long as the callbacks that read it (shared ownership).

@@ -94,9 +94,13 @@ double max_detectable(const std::string& scene) {
 // quadrants and the whole image are tested too (21 regions a scene).
 TEST(Estimators, BsdfOnlyAgreesWithNeeMisOnEveryBuiltinScene) {
     const auto scenes = iris::scene::builtin_scenes();
-    const double z_max = iris_test::sidak_z(0.001, scenes.size() * (16 + 4 + 1) * 3);
+    const double z_max = iris_test::sidak_z(0.001, (scenes.size() - 2) * (16 + 4 + 1) * 3);
     for (const auto& info : scenes) {
         const std::string name(info.name);
+        // falling-cubes-rgb and -laser are falling-cubes with another lamp spectrum
+        // (BuiltinScenes.FallingCubesVariantsDifferOnlyInTheirSpd): falling-cubes-led already
+        // stands for a non-smooth SPD here, and the two would add ~40 % to this test's time
+        if (name == "falling-cubes-rgb" || name == "falling-cubes-laser") continue;
         const auto s = iris::scene::builtin_scene(name);
         const auto a = iris_test::grid_estimates(s, make("nee-mis", "hwss", 32, 32, 2048, 11), 4, 4);
         const auto b = iris_test::grid_estimates(s, make("bsdf-only", "hwss", 32, 32, 16384, 12), 4, 4);

@@ -6,6 +6,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <thread>
 
 #include <iris/renderer/renderer.hpp>
@@ -41,10 +43,21 @@ std::vector<double> window_y(const iris::scene_desc& s, const options& o, int fr
 /// the domain Λ, so E[Y]_α = Y · (∫ ȳ r_α / ∫ r_α) / (∫ ȳ / |Λ|) — Y = 5 only where the
 /// windows' mean ȳ equals the domain's (SPEC §3: "right brightness for flat spectra", flat
 /// meaning the integrand L·ȳ, not the emitter). α_i = i / N_thold, written out here.
-double scaled_pdf_furnace_y(int nthold, int from, int to) {
-    return iris::dispatch_preset("scaled-pdf", [&]<class P>() {
+/// `preset` is `scaled-pdf` or `scaled-pdf-auto`; `windows` what renderer::windows reports
+/// for it on the furnace ("c:w,c:w,c:w"), so the automatic windows are the render's own.
+double scaled_pdf_furnace_y(const std::string& preset, const std::string& windows, int nthold, int from, int to) {
+    return iris::dispatch_preset(preset, [&]<class P>() {
         typename P::parameters params;
         params.n_thold = static_cast<std::uint32_t>(nthold);
+        if constexpr (iris::detail::is_multi_box<typename P::kernel_type>) {
+            std::istringstream in(windows);
+            for (std::size_t k = 0; k < P::kernel_type::max_intervals; ++k) {
+                char colon = 0, comma = 0;
+                in >> params.kernel.centres_nm[k] >> colon >> params.kernel.widths_nm[k];
+                if (k + 1 < P::kernel_type::max_intervals) in >> comma;
+                EXPECT_TRUE(in && colon == ':') << "windows '" << windows << "'";
+            }
+        }
         const P cfg(params);
         const double lo = params.domain.min_nm, hi = params.domain.max_nm, step = 0.05;
         double sum = 0.0;
@@ -77,7 +90,8 @@ std::pair<double, double> mean_se(const std::vector<double>& y) {
 // spp)): a bias confined to α < 1 would be diluted over the whole run. Before N_thold
 // the unrestricted and propagating presets must give 5 (U1), and `scaled-pdf` its own
 // exact expectation (`scaled_pdf_furnace_y`: 6.4 here, brighter because its windows sit
-// where ȳ is high), which pins its division by Z_α; after N_thold every preset gives 5.
+// where ȳ is high; `scaled-pdf-auto`'s, from its own windows, 7.1), which pins its
+// division by Z_α; after N_thold every preset gives 5.
 // restrict-only before N_thold is the negative control below. Family: ≤ 16 presets × 2 windows at family-wise α = 0.01 (Šidák); each
 // window's standard error is asserted small enough to detect a 2 % bias (0.1) with 90 %
 // power: (z + 1.2816) · se ≤ 0.1.
@@ -101,7 +115,9 @@ TEST(RendererCore, WhiteFurnaceIsFiveForEveryPresetBeforeAndAfterNthold) {
             auto w = o;
             w.spp = to;  // samples [from, to): the run up to `to`, less its first `from`
             const auto [m, se] = mean_se(window_y(s, w, from));
-            const double want = scaled && from < o.nthold ? scaled_pdf_furnace_y(o.nthold, from, to) : 5.0;
+            const double want = scaled && from < o.nthold
+                                    ? scaled_pdf_furnace_y(p.name, iris::renderer::windows(s, p.name), o.nthold, from, to)
+                                    : 5.0;
             EXPECT_NEAR(m, want, z * se) << p.name << ", samples [" << from << ", " << to << "), se " << se;
             EXPECT_LE((z + 1.2816) * se, 0.1) << p.name << ": cannot detect a 2 % bias, se " << se;
         }

@@ -67,7 +67,7 @@ TEST(BuiltinScenes, ListIsTheSixScenesInOrder) {
         names.emplace_back(b.name);
         EXPECT_FALSE(b.description.empty()) << b.name;
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"falling-cubes", "falling-cubes-led", "rubik", "prism", "cornell", "furnace"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"falling-cubes", "falling-cubes-led", "falling-cubes-rgb", "falling-cubes-laser", "rubik", "prism", "cornell", "furnace"}));
 }
 
 TEST(BuiltinScenes, EveryOneLoadsWithLightCameraAndTriangles) {
@@ -91,7 +91,7 @@ TEST(BuiltinScenes, EveryOneLoadsWithLightCameraAndTriangles) {
     try {
         iris::scene::builtin_scene("cornel");
     } catch (const iris::scene::error& e) {
-        EXPECT_NE(std::string(e.what()).find("expected one of falling-cubes, falling-cubes-led, rubik, prism, cornell, furnace"),
+        EXPECT_NE(std::string(e.what()).find("expected one of falling-cubes, falling-cubes-led, falling-cubes-rgb, falling-cubes-laser, rubik, prism, cornell, furnace"),
                   std::string::npos)
             << e.what();
     }
@@ -130,6 +130,7 @@ struct expected_features {
 TEST(BuiltinScenes, FeatureSummariesAreRight) {
     const expected_features table[] = {
         {"falling-cubes", true, false, true, {"D65"}}, {"falling-cubes-led", true, false, true, {"LED-B1"}},
+        {"falling-cubes-rgb", true, false, true, {"LED-RGB1"}}, {"falling-cubes-laser", true, false, true, {"tabulated"}},
         {"rubik", true, false, true, {"D65"}},         {"prism", true, false, true, {"D65"}},
         {"cornell", true, false, true, {"D65"}},       {"furnace", false, false, false, {"D65"}},
     };
@@ -184,8 +185,16 @@ TEST(BuiltinScenes, FurnaceIsAClosedInwardEmitterOfLuminanceOneAndAlbedoPointEig
         EXPECT_TRUE(tracer.intersect(s.camera.position, d, 1e3f)) << d.x << d.y << d.z;
 }
 
-TEST(BuiltinScenes, FallingCubesLedDiffersOnlyInItsSpd) {
+TEST(BuiltinScenes, FallingCubesVariantsDifferOnlyInTheirSpd) {
     const auto a = iris::scene::builtin_scene("falling-cubes");
+    for (const auto* variant : {"falling-cubes-rgb", "falling-cubes-laser"}) {
+        SCOPED_TRACE(variant);
+        const auto v = iris::scene::builtin_scene(variant);
+        ASSERT_EQ(a.shapes.size(), v.shapes.size());
+        for (std::size_t i = 0; i < a.shapes.size(); ++i) EXPECT_EQ(a.shapes[i].mesh.positions, v.shapes[i].mesh.positions);
+        EXPECT_EQ(a.materials.size(), v.materials.size());
+        EXPECT_NEAR(iris::luminance(a.emitters[0].radiance), iris::luminance(v.emitters[0].radiance), 1e-9);
+    }
     const auto b = iris::scene::builtin_scene("falling-cubes-led");
     ASSERT_EQ(a.shapes.size(), b.shapes.size());
     for (std::size_t i = 0; i < a.shapes.size(); ++i) {

@@ -2,6 +2,7 @@
 // a program for iris-render --tev. Listens on an ephemeral port of 127.0.0.1 and writes it to
 // PORT_FILE; when the first connection closes, writes the one image it received to OUT.exr
 // (its R, G, B channels) and exits 0, or 1 if a packet was malformed (the errors on stderr).
+// With OUT ending in '/' (a directory), it writes every image it received, as OUT/NAME.exr.
 // With DIE_AFTER_PACKETS it closes everything after that many packets and exits 3, as a
 // viewer that is killed. Gives up after 60 s (exit 4).
 #include <chrono>
@@ -43,12 +44,15 @@ int main(int argc, char** argv) {
     server.stop();
     for (const auto& e : server.errors()) std::fprintf(stderr, "tev_listen: %s\n", e.c_str());
     const auto images = server.images();
-    if (!server.errors().empty() || images.size() != 1) return 1;
-    const auto& img = images.begin()->second;
-    if (img.channels != std::vector<std::string>{"R", "G", "B"}) return 1;
-    iris::image out(img.width, img.height);
-    for (std::size_t i = 0; i < out.pixel_count(); ++i)
-        out.pixels()[i] = {img.data[3 * i], img.data[3 * i + 1], img.data[3 * i + 2]};
-    iris::exr::write(argv[2], out, {{"tev:updates", std::to_string(img.updates)}});
+    const std::string out_path = argv[2];
+    const bool many = !out_path.empty() && out_path.back() == '/';
+    if (!server.errors().empty() || images.empty() || (!many && images.size() != 1)) return 1;
+    for (const auto& [name, img] : images) {
+        if (img.channels != std::vector<std::string>{"R", "G", "B"}) return 1;
+        iris::image out(img.width, img.height);
+        for (std::size_t i = 0; i < out.pixel_count(); ++i)
+            out.pixels()[i] = {img.data[3 * i], img.data[3 * i + 1], img.data[3 * i + 2]};
+        iris::exr::write(many ? out_path + name + ".exr" : out_path, out, {{"tev:updates", std::to_string(img.updates)}});
+    }
     return 0;
 }

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// \brief `integrator_config<Kernel, Curve, C, Bias, BasePdf>`: one choice of sampling
-/// policies, checked once, with a readable name (`multibox3/linear/C4/propagate`; the
-/// base pdf is appended when it is not uniform: `unrestricted/none/C4/none/visible`).
+/// \brief `integrator_config<Kernel, Curve, C, Bias, BasePdf, Placement>`: one choice of
+/// sampling policies, checked once, with a readable name (`multibox3/linear/C4/propagate`;
+/// the base pdf is appended when it is not uniform: `unrestricted/none/C4/none/visible`;
+/// an automatic placement marks the kernel: `multibox3-auto/linear/C4/propagate`).
 ///
 /// The types are the compile-time part; `parameters` holds the numbers (kernel centres
 /// and widths, N_thold, domain, distribution cell size). An integrator
@@ -18,6 +19,7 @@
 #include "iris/sampling/bias.hpp"
 #include "iris/sampling/detail/name.hpp"
 #include "iris/sampling/domain.hpp"
+#include "iris/sampling/placement.hpp"
 #include "iris/sampling/relaxation.hpp"
 #include "iris/sampling/restricted_distribution.hpp"
 #include "iris/sampling/restriction.hpp"
@@ -26,18 +28,26 @@
 namespace iris {
 
 namespace detail {
-template <class K, class R, std::size_t C, class B, class P>
+template <class K, class R, std::size_t C, class B, class P, class L>
 constexpr name_buffer config_name() noexcept {
     name_buffer b;
-    b.append(K::name).append("/").append(R::name).append("/C").append_number(C).append("/").append(B::name);
+    b.append(K::name);
+    if constexpr (L::automatic) b.append("-").append(L::name);
+    b.append("/").append(R::name).append("/C").append_number(C).append("/").append(B::name);
     if (std::string_view(P::name) != spectral_pdf::uniform::name) b.append("/").append(P::name);
     return b;
 }
-template <class K, class R, std::size_t C, class B, class P>
-inline constexpr name_buffer config_name_v = config_name<K, R, C, B, P>();
+template <class K, class R, std::size_t C, class B, class P, class L>
+inline constexpr name_buffer config_name_v = config_name<K, R, C, B, P, L>();
+
+template <class K>
+inline constexpr bool is_multi_box = false;
+template <std::size_t N>
+inline constexpr bool is_multi_box<restriction::multi_box<N>> = true;
 }  // namespace detail
 
-template <class Kernel, class Curve, std::size_t C, class Bias, class BasePdf = spectral_pdf::uniform>
+template <class Kernel, class Curve, std::size_t C, class Bias, class BasePdf = spectral_pdf::uniform,
+          class WindowPlacement = placement::fixed>
 struct integrator_config {
     static_assert(RestrictionKernel<Kernel>,
                   "Kernel must be a restriction kernel (iris/sampling/restriction.hpp): a value type with "
@@ -49,6 +59,11 @@ struct integrator_config {
                   "`restricted_factor`, and not both propagating and scaling");
     static_assert(SpectralPdf<BasePdf>,
                   "BasePdf must be a base wavelength pdf (iris/sampling/spectral_pdf.hpp): `name`, `density` and `primitive`");
+    static_assert(placement::Placement<WindowPlacement>,
+                  "WindowPlacement must be a placement policy (iris/sampling/placement.hpp): placement::fixed or "
+                  "placement::emitters");
+    static_assert(!WindowPlacement::automatic || detail::is_multi_box<Kernel>,
+                  "automatic window placement places the windows of restriction::multi_box<N>; this kernel has none");
     static_assert(C >= 1, "a path needs at least one wavelength (C >= 1)");
     static_assert(C <= 64, "more than 64 wavelengths per path: sampled_spectrum<C> would outgrow the registers for no gain");
     static_assert(!std::is_same_v<Curve, relaxation::none> || std::is_same_v<Kernel, restriction::unrestricted>,
@@ -64,10 +79,11 @@ struct integrator_config {
     using curve_type = Curve;
     using bias_type = Bias;
     using base_pdf_type = BasePdf;
+    using placement_type = WindowPlacement;
     using distribution_type = restricted_distribution<BasePdf, Kernel>;
     static constexpr std::size_t wavelength_count = C;
     /// \brief e.g. `multibox3/linear/C4/propagate`: used in CLIs, CSVs, EXR metadata, benchmarks.
-    static constexpr std::string_view name = detail::config_name_v<Kernel, Curve, C, Bias, BasePdf>.view();
+    static constexpr std::string_view name = detail::config_name_v<Kernel, Curve, C, Bias, BasePdf, WindowPlacement>.view();
 
     /// \brief The runtime numbers of a configuration.
     struct parameters {

@@ -15,6 +15,8 @@
 /// | `box` | `box/linear/C4/propagate` | one window at 580 nm (paper Fig. 5) with propagation |
 /// | `gaussian` | `gaussian/linear/C4/propagate` | the smooth kernel with propagation |
 /// | `scaled-pdf` | `multibox3/linear/C4/scaled` | the paper's "scaling PDFs" (Fig. 7) |
+/// | `paper-auto` | `multibox3-auto/linear/C4/propagate` | `paper` with its windows placed from the scene's emitters (placement.hpp) |
+/// | `scaled-pdf-auto` | `multibox3-auto/linear/C4/scaled` | `scaled-pdf` with the windows placed from the emitters |
 /// | `restrict-only` | `multibox3/linear/C4/none` | restriction without a bias term (dim early) |
 /// | `hwss-c1` | `unrestricted/none/C1/none` | one wavelength per path |
 /// | `hwss-c8` | `unrestricted/none/C8/none` | eight wavelengths per path |
@@ -64,6 +66,10 @@ using box_linear = named_preset<"box", integrator_config<box, relaxation::linear
 using gaussian_linear =
     named_preset<"gaussian", integrator_config<gaussian, relaxation::linear, 4, bias::propagate_unused>>;
 using scaled_pdf = named_preset<"scaled-pdf", integrator_config<multi_box<3>, relaxation::linear, 4, bias::scaled_pdf>>;
+using paper_auto = named_preset<"paper-auto", integrator_config<multi_box<3>, relaxation::linear, 4, bias::propagate_unused,
+                                                                 spectral_pdf::uniform, placement::emitters>>;
+using scaled_pdf_auto = named_preset<"scaled-pdf-auto", integrator_config<multi_box<3>, relaxation::linear, 4, bias::scaled_pdf,
+                                                                          spectral_pdf::uniform, placement::emitters>>;
 using restrict_only = named_preset<"restrict-only", integrator_config<multi_box<3>, relaxation::linear, 4, bias::none>>;
 using hwss_c1 = named_preset<"hwss-c1", integrator_config<unrestricted, relaxation::none, 1, bias::none>>;
 using hwss_c8 = named_preset<"hwss-c8", integrator_config<unrestricted, relaxation::none, 8, bias::none>>;
@@ -74,7 +80,7 @@ using hwss_visible =
 /// \brief Every preset, in the order the tools list them (`hwss` first: the baseline).
 using presets = type_list<preset::hwss, preset::paper, preset::paper_fast, preset::paper_quadratic, preset::box_linear,
                           preset::gaussian_linear, preset::scaled_pdf, preset::restrict_only, preset::hwss_c1,
-                          preset::hwss_c8, preset::hwss_visible>;
+                          preset::hwss_c8, preset::hwss_visible, preset::paper_auto, preset::scaled_pdf_auto>;
 
 namespace detail {
 template <std::size_t I, class List>

@@ -12,6 +12,7 @@
 #include "iris/sampling/presets.hpp"
 #include "dispatch.hpp"
 #include "render_loop.hpp"
+#include "windows.hpp"
 
 namespace iris::renderer::detail {
 
@@ -20,6 +21,7 @@ void render_preset(const render_job& job) {
     typename Preset::parameters params;
     params.n_thold = static_cast<std::uint32_t>(job.opt.nthold);
     params.domain = {job.scene.lambda_min, job.scene.lambda_max};
+    job.st.windows = resolve_windows<Preset>(params, job.scene);
     const Preset cfg(params);
     const light_sampler lights(job.scene);
     const path_integrator<Preset> integ(job.scene, lights, job.opt.path);

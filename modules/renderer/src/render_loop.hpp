@@ -117,6 +117,7 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
     using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
     constexpr auto tile = tile_function<I, Integrator, Tracer, distribution>();
 
+    if (h.on_start && !h.on_start(st)) return;
     // Rounds of `ranks` passes from start_spp on; this rank renders pass round + rank.
     for (int round = opt.start_spp; round < opt.spp; round += opt.ranks) {
         if (h.cancel && h.cancel->load()) {

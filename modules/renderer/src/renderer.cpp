@@ -15,6 +15,7 @@
 #include "iris/sampling/presets.hpp"
 #include "iris/embree/intersector.hpp"
 #include "dispatch.hpp"
+#include "windows.hpp"
 
 namespace iris::renderer {
 namespace {
@@ -153,6 +154,14 @@ std::vector<std::string> preset_names() {
 
 std::string config_name(const std::string& preset) {
     return dispatch_preset(preset, [&]<class P>() { return std::string(P::name); });
+}
+
+std::string windows(const scene_desc& scene, const std::string& preset) {
+    return dispatch_preset(preset, [&]<class P>() {
+        typename P::parameters params;
+        params.domain = {scene.lambda_min, scene.lambda_max};
+        return detail::resolve_windows<P>(params, scene);
+    });
 }
 
 }  // namespace iris::renderer

@@ -9,7 +9,9 @@
 /// instantiation `path_integrator<Config>` with its hot loop compiled for that instruction
 /// set; nothing below branches on the policy at run time.
 
+#include <array>
 #include <atomic>
+#include <cstdio>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -76,9 +78,34 @@ struct status {
     std::uint64_t rays = 0;        ///< traced by this call (this rank)
     std::uint64_t nan_inf = 0;     ///< samples this call dropped from the film (non-finite, out of range)
     bool interrupted = false;
+    /// \brief The restriction windows the render used, "centre:width" in nm, comma-separated
+    /// ("464:20,549:20,611:20" for `paper`; placed from the scene's emitters for the `-auto`
+    /// presets, iris/sampling/placement.hpp); empty for kernels without windows.
+    std::string windows;
 };
 
+/// \brief "464:20,549:20,611:20": windows as `status::windows` writes them.
+template <std::size_t N>
+std::string format_windows(const std::array<float, N>& centres_nm, const std::array<float, N>& widths_nm) {
+    std::string s;
+    for (std::size_t k = 0; k < N; ++k) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%s%g:%g", k ? "," : "", static_cast<double>(centres_nm[k]),
+                      static_cast<double>(widths_nm[k]));
+        s += buf;
+    }
+    return s;
+}
+
+/// \brief The windows `render` would use for `scene` with `preset` (status::windows), without
+/// rendering. \throws std::invalid_argument for an unknown preset.
+std::string windows(const scene_desc& scene, const std::string& preset);
+
 struct hooks {
+    /// \brief Once, after the setup (scene, ray tracer, threads) and before the first pass,
+    /// on the thread that called render; not timed. Return false to render no pass. (For
+    /// callers that schedule several renders, e.g. iris-compare's lockstep.)
+    std::function<bool(const status&)> on_start;
     /// \brief After every complete pass (with ranks > 1: after every round, on every rank).
     /// Return false to stop after this pass.
     std::function<bool(const film&, const status&)> on_pass;
