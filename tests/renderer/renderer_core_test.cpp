@@ -124,6 +124,50 @@ TEST(RendererCore, WhiteFurnaceIsFiveForEveryPresetBeforeAndAfterNthold) {
     }
 }
 
+// accumulation::fade changes what the film shows, not which samples it takes: `paper-fade`'s
+// running mean is `paper`'s bit for bit, and so is its image until two samples have been
+// taken at α = 1 (N_thold + 2); after that the image is the blend, which differs. A fading
+// render refuses to resume or to run over ranks (its fade layer is not in checkpoints).
+TEST(RendererCore, PaperFadeTakesPapersSamplesAndFadesOnlyAfterNthold) {
+    const auto s = iris::test::furnace(0.8);
+    options o;
+    o.width = 12;
+    o.height = 10;
+    o.nthold = 8;
+    o.seed = 5;
+    const auto run = [&](const std::string& preset, int spp) {
+        auto w = o;
+        w.preset = preset;
+        w.spp = spp;
+        iris::film f(1, 1);
+        iris::renderer::render(s, w, f, {});
+        return f;
+    };
+    for (int spp : {4, 9, 10, 24}) {
+        const auto plain = run("paper", spp), fade = run("paper-fade", spp);
+        ASSERT_TRUE(fade.fades());
+        ASSERT_FALSE(plain.fades());
+        const auto a = plain.to_image(), b = fade.to_image();
+        bool image_same = true;
+        for (std::size_t i = 0; i < 120; ++i) {
+            ASSERT_EQ(plain.sum(i), fade.sum(i)) << spp << " spp, pixel " << i;
+            image_same = image_same && a.pixels()[i].g == b.pixels()[i].g;
+        }
+        EXPECT_EQ(image_same, spp < o.nthold + 2) << spp << " spp";
+    }
+    auto resume = o;
+    resume.preset = "paper-fade";
+    resume.spp = 16;
+    resume.start_spp = 8;
+    iris::film f = run("paper-fade", 8);
+    EXPECT_THROW(iris::renderer::render(s, resume, f, {}), std::invalid_argument);
+    auto ranks = o;
+    ranks.preset = "paper-auto-fade";
+    ranks.spp = 16;
+    ranks.ranks = 2;
+    EXPECT_THROW(iris::renderer::render(s, ranks, f, {}), std::invalid_argument);
+}
+
 TEST(RendererCore, RestrictOnlyIsDimBeforeNtholdNegativeControl) {
     const auto s = iris::test::furnace(0.8);
     options o;

@@ -14,16 +14,26 @@
 /// counted like a NaN; below it, 2^32 − 1 samples per pixel (the counter's limit) cannot
 /// overflow the sums: 2^39 · 2^56 · 2^32 = 2^127. The mean is the sum converted to double
 /// once (rounded to nearest) and divided by the sample count.
+///
+/// **The fade layer** (accumulation::fade, iris/render/fade.hpp), off unless `enable_fade`
+/// switches it on: the sums of the samples with index < split (taken while α < 1) kept
+/// apart, and the exact second moments of both sides. `mean` stays the running mean over
+/// every sample; `to_image` shows the fade's blend. The layer is not part of `sums()` /
+/// `from_parts` (checkpoints, MPI): the renderer refuses to resume or distribute a fading
+/// render.
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "iris/image.hpp"
+#include "iris/render/fade.hpp"
 #include "iris/spectrum/color.hpp"
 
 namespace iris {
@@ -68,16 +78,85 @@ public:
 
     /// \brief Add one sample to pixel `i`; a NaN/Inf or out-of-range sample still counts as
     /// a sample taken (so the mean is not biased upwards) but contributes 0, and is counted.
-    void add(std::size_t i, const xyz& v) noexcept {
+    /// `sample` is its 0-based index in the pixel: the fade layer's side (ignored without it).
+    void add(std::size_t i, const xyz& v, std::uint64_t sample = 0) noexcept {
         ++m_count[i];
-        if (summable(v.x) && summable(v.y) && summable(v.z)) {
+        const bool ok = summable(v.x) && summable(v.y) && summable(v.z);
+        if (ok) {
             m_sum[i].x += to_fixed(v.x);
             m_sum[i].y += to_fixed(v.y);
             m_sum[i].z += to_fixed(v.z);
         } else {
             ++m_dropped[i];
         }
+        if (m_fade) m_fade->add(i, ok ? v : xyz{}, sample);
     }
+
+    /// \brief Switch the fade layer on (a film without samples): samples with index < `split`
+    /// (N_thold) are the early side. Memory: fade_bytes_per_pixel more per pixel.
+    /// \throws std::logic_error if the film has samples.
+    void enable_fade(std::uint32_t split) {
+        for (auto c : m_count)
+            if (c != 0) throw std::logic_error("film::enable_fade: the film already has samples");
+        m_fade.emplace(m_sum.size(), split);
+    }
+    bool fades() const noexcept { return m_fade.has_value(); }
+    static constexpr std::size_t fade_bytes_per_pixel =
+        sizeof(exact_xyz) + sizeof(std::uint32_t) + 6 * sizeof(fade::square_sum);
+
+    /// \brief Pixel `i`'s early (index < split) and late samples per channel (X, Y, Z): count,
+    /// mean, variance of the mean. Only with the fade layer.
+    std::array<std::pair<fade::side, fade::side>, 3> fade_sides(std::size_t i) const noexcept {
+        const auto& l = *m_fade;
+        const double n = m_count[i], nb = l.early_count[i], nu = n - nb;
+        const exact_int early[3] = {l.early_sum[i].x, l.early_sum[i].y, l.early_sum[i].z};
+        const exact_int all[3] = {m_sum[i].x, m_sum[i].y, m_sum[i].z};
+        std::array<std::pair<fade::side, fade::side>, 3> out;
+        for (std::size_t c = 0; c < 3; ++c)
+            out[c] = {fade::make_side(nb, static_cast<double>(early[c]) * 0x1p-56, l.early_sq[i][c].value()),
+                      fade::make_side(nu, static_cast<double>(all[c] - early[c]) * 0x1p-56, l.late_sq[i][c].value())};
+        return out;
+    }
+
+    /// \brief The fade's blend of every pixel (fade.hpp), row-major: each pixel's weight from
+    /// the sums over its (2·radius + 1)² neighbourhood clipped to the image (pixels with fewer
+    /// than 2 samples on a side left out); the running mean where the pixel itself has fewer
+    /// than 2 samples on a side. Only with the fade layer.
+    std::vector<xyz> faded(int radius = fade_radius) const {
+        const std::size_t n = m_sum.size();
+        std::vector<std::array<std::pair<fade::side, fade::side>, 3>> sides(n);
+        std::vector<fade::weight_sums> own(n);
+        const auto usable = [&](std::size_t i) { return sides[i][0].first.n >= 2 && sides[i][0].second.n >= 2; };
+        for (std::size_t i = 0; i < n; ++i) {
+            sides[i] = fade_sides(i);
+            if (usable(i))
+                for (const auto& [early, late] : sides[i]) own[i].add(early, late);
+        }
+        std::vector<xyz> out(n);
+        for (int y = 0; y < m_height; ++y)
+            for (int x = 0; x < m_width; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x);
+                if (!usable(i)) {
+                    out[i] = mean(i);
+                    continue;
+                }
+                fade::weight_sums sums;
+                for (int yy = std::max(0, y - radius); yy <= std::min(m_height - 1, y + radius); ++yy)
+                    for (int xx = std::max(0, x - radius); xx <= std::min(m_width - 1, x + radius); ++xx) {
+                        const auto& o = own[static_cast<std::size_t>(yy) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(xx)];
+                        sums.var_late += o.var_late;
+                        sums.var_both += o.var_both;
+                        sums.diff_sq += o.diff_sq;
+                    }
+                const double nb = sides[i][0].first.n, nu = sides[i][0].second.n;
+                const double w = fade::weight(sums, nb / (nb + nu));
+                const auto blend = [&](std::size_t c) { return w * sides[i][c].first.mean + (1 - w) * sides[i][c].second.mean; };
+                out[i] = {blend(0), blend(1), blend(2)};
+            }
+        return out;
+    }
+    /// \brief The neighbourhood radius of the fade's weights: 5 × 5 pixels.
+    static constexpr int fade_radius = 2;
 
     /// \brief Mean XYZ of pixel `i` (0 before its first sample).
     xyz mean(std::size_t i) const noexcept {
@@ -128,8 +207,11 @@ public:
     void merge(const film& other) {
         if (other.m_width != m_width || other.m_height != m_height)
             throw std::invalid_argument("film::merge: the films differ in size");
+        if (fades() != other.fades() || (fades() && m_fade->split != other.m_fade->split))
+            throw std::invalid_argument("film::merge: one film fades and the other does not, or they split at different samples");
         for (std::size_t i = 0; i < m_sum.size(); ++i)
             if (other.m_count[i] > UINT32_MAX - m_count[i]) throw std::overflow_error("film::merge: more than 2^32 - 1 samples in a pixel");
+        if (m_fade) m_fade->merge(*other.m_fade);
         for (std::size_t i = 0; i < m_sum.size(); ++i) {
             m_sum[i].x += other.m_sum[i].x;
             m_sum[i].y += other.m_sum[i].y;
@@ -139,21 +221,57 @@ public:
         }
     }
 
-    /// \brief The running mean as linear sRGB.
+    /// \brief The image as linear sRGB: the running mean, or with the fade layer the fade's blend.
     image to_image() const {
         image img(m_width, m_height);
+        const std::vector<xyz> blend = m_fade ? faded() : std::vector<xyz>{};
         for (std::size_t i = 0; i < m_sum.size(); ++i) {
-            const rgb c = xyz_to_linear_srgb(mean(i));
+            const rgb c = xyz_to_linear_srgb(m_fade ? blend[i] : mean(i));
             img.pixels()[i] = {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
         }
         return img;
     }
 
 private:
+    /// \brief The fade layer's state (enable_fade).
+    struct fade_layer {
+        std::uint32_t split;
+        std::vector<exact_xyz> early_sum;
+        std::vector<std::uint32_t> early_count;
+        std::vector<std::array<fade::square_sum, 3>> early_sq, late_sq;
+        fade_layer(std::size_t pixels, std::uint32_t split_at)
+            : split(split_at), early_sum(pixels), early_count(pixels, 0), early_sq(pixels), late_sq(pixels) {}
+        void add(std::size_t i, const xyz& v, std::uint64_t sample) noexcept {
+            const bool early = sample < split;
+            auto& sq = early ? early_sq[i] : late_sq[i];
+            sq[0].add(fade::to_fixed_square(v.x));
+            sq[1].add(fade::to_fixed_square(v.y));
+            sq[2].add(fade::to_fixed_square(v.z));
+            if (!early) return;
+            ++early_count[i];
+            early_sum[i].x += to_fixed(v.x);
+            early_sum[i].y += to_fixed(v.y);
+            early_sum[i].z += to_fixed(v.z);
+        }
+        void merge(const fade_layer& o) noexcept {
+            for (std::size_t i = 0; i < early_sum.size(); ++i) {
+                early_sum[i].x += o.early_sum[i].x;
+                early_sum[i].y += o.early_sum[i].y;
+                early_sum[i].z += o.early_sum[i].z;
+                early_count[i] += o.early_count[i];
+                for (std::size_t c = 0; c < 3; ++c) {
+                    early_sq[i][c].add(o.early_sq[i][c]);
+                    late_sq[i][c].add(o.late_sq[i][c]);
+                }
+            }
+        }
+    };
+
     int m_width, m_height;
     std::vector<exact_xyz> m_sum;
     std::vector<std::uint32_t> m_count;
     std::vector<std::uint32_t> m_dropped;
+    std::optional<fade_layer> m_fade;
 };
 
 }  // namespace iris

@@ -1,9 +1,11 @@
 #pragma once
 /// \file
-/// \brief `integrator_config<Kernel, Curve, C, Bias, BasePdf, Placement>`: one choice of
-/// sampling policies, checked once, with a readable name (`multibox3/linear/C4/propagate`;
-/// the base pdf is appended when it is not uniform: `unrestricted/none/C4/none/visible`;
-/// an automatic placement marks the kernel: `multibox3-auto/linear/C4/propagate`).
+/// \brief `integrator_config<Kernel, Curve, C, Bias, BasePdf, Placement, Accumulation>`: one
+/// choice of sampling policies, checked once, with a readable name
+/// (`multibox3/linear/C4/propagate`; the base pdf is appended when it is not uniform:
+/// `unrestricted/none/C4/none/visible`; an automatic placement marks the kernel:
+/// `multibox3-auto/linear/C4/propagate`; a fading accumulation is appended last:
+/// `multibox3/linear/C4/propagate/fade`).
 ///
 /// The types are the compile-time part; `parameters` holds the numbers (kernel centres
 /// and widths, N_thold, domain, distribution cell size). An integrator
@@ -16,6 +18,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "iris/sampling/accumulation.hpp"
 #include "iris/sampling/bias.hpp"
 #include "iris/sampling/detail/name.hpp"
 #include "iris/sampling/domain.hpp"
@@ -28,17 +31,18 @@
 namespace iris {
 
 namespace detail {
-template <class K, class R, std::size_t C, class B, class P, class L>
+template <class K, class R, std::size_t C, class B, class P, class L, class A>
 constexpr name_buffer config_name() noexcept {
     name_buffer b;
     b.append(K::name);
     if constexpr (L::automatic) b.append("-").append(L::name);
     b.append("/").append(R::name).append("/C").append_number(C).append("/").append(B::name);
     if (std::string_view(P::name) != spectral_pdf::uniform::name) b.append("/").append(P::name);
+    if constexpr (A::fades) b.append("/").append(A::name);
     return b;
 }
-template <class K, class R, std::size_t C, class B, class P, class L>
-inline constexpr name_buffer config_name_v = config_name<K, R, C, B, P, L>();
+template <class K, class R, std::size_t C, class B, class P, class L, class A>
+inline constexpr name_buffer config_name_v = config_name<K, R, C, B, P, L, A>();
 
 template <class K>
 inline constexpr bool is_multi_box = false;
@@ -47,7 +51,7 @@ inline constexpr bool is_multi_box<restriction::multi_box<N>> = true;
 }  // namespace detail
 
 template <class Kernel, class Curve, std::size_t C, class Bias, class BasePdf = spectral_pdf::uniform,
-          class WindowPlacement = placement::fixed>
+          class WindowPlacement = placement::fixed, class Accumulation = accumulation::running_mean>
 struct integrator_config {
     static_assert(RestrictionKernel<Kernel>,
                   "Kernel must be a restriction kernel (iris/sampling/restriction.hpp): a value type with "
@@ -62,6 +66,12 @@ struct integrator_config {
     static_assert(placement::Placement<WindowPlacement>,
                   "WindowPlacement must be a placement policy (iris/sampling/placement.hpp): placement::fixed or "
                   "placement::emitters");
+    static_assert(accumulation::Accumulation<Accumulation>,
+                  "Accumulation must be an accumulation policy (iris/sampling/accumulation.hpp): "
+                  "accumulation::running_mean or accumulation::fade");
+    static_assert(!Accumulation::fades || !std::is_same_v<Kernel, restriction::unrestricted>,
+                  "accumulation::fade separates the samples taken while alpha < 1 from the rest; an unrestricted "
+                  "kernel has no such samples: use accumulation::running_mean");
     static_assert(!WindowPlacement::automatic || detail::is_multi_box<Kernel>,
                   "automatic window placement places the windows of restriction::multi_box<N>; this kernel has none");
     static_assert(C >= 1, "a path needs at least one wavelength (C >= 1)");
@@ -80,10 +90,11 @@ struct integrator_config {
     using bias_type = Bias;
     using base_pdf_type = BasePdf;
     using placement_type = WindowPlacement;
+    using accumulation_type = Accumulation;
     using distribution_type = restricted_distribution<BasePdf, Kernel>;
     static constexpr std::size_t wavelength_count = C;
     /// \brief e.g. `multibox3/linear/C4/propagate`: used in CLIs, CSVs, EXR metadata, benchmarks.
-    static constexpr std::string_view name = detail::config_name_v<Kernel, Curve, C, Bias, BasePdf, WindowPlacement>.view();
+    static constexpr std::string_view name = detail::config_name_v<Kernel, Curve, C, Bias, BasePdf, WindowPlacement, Accumulation>.view();
 
     /// \brief The runtime numbers of a configuration.
     struct parameters {

@@ -17,6 +17,8 @@
 /// | `scaled-pdf` | `multibox3/linear/C4/scaled` | the paper's "scaling PDFs" (Fig. 7) |
 /// | `paper-auto` | `multibox3-auto/linear/C4/propagate` | `paper` with its windows placed from the scene's emitters (placement.hpp) |
 /// | `scaled-pdf-auto` | `multibox3-auto/linear/C4/scaled` | `scaled-pdf` with the windows placed from the emitters |
+/// | `paper-fade` | `multibox3/linear/C4/propagate/fade` | `paper` whose biased early samples fade out of the image (accumulation.hpp) |
+/// | `paper-auto-fade` | `multibox3-auto/linear/C4/propagate/fade` | `paper-auto` with the fade |
 /// | `restrict-only` | `multibox3/linear/C4/none` | restriction without a bias term (dim early) |
 /// | `hwss-c1` | `unrestricted/none/C1/none` | one wavelength per path |
 /// | `hwss-c8` | `unrestricted/none/C8/none` | eight wavelengths per path |
@@ -70,6 +72,11 @@ using paper_auto = named_preset<"paper-auto", integrator_config<multi_box<3>, re
                                                                  spectral_pdf::uniform, placement::emitters>>;
 using scaled_pdf_auto = named_preset<"scaled-pdf-auto", integrator_config<multi_box<3>, relaxation::linear, 4, bias::scaled_pdf,
                                                                           spectral_pdf::uniform, placement::emitters>>;
+using paper_fade = named_preset<"paper-fade", integrator_config<multi_box<3>, relaxation::linear, 4, bias::propagate_unused,
+                                                                 spectral_pdf::uniform, placement::fixed, accumulation::fade>>;
+using paper_auto_fade =
+    named_preset<"paper-auto-fade", integrator_config<multi_box<3>, relaxation::linear, 4, bias::propagate_unused,
+                                                      spectral_pdf::uniform, placement::emitters, accumulation::fade>>;
 using restrict_only = named_preset<"restrict-only", integrator_config<multi_box<3>, relaxation::linear, 4, bias::none>>;
 using hwss_c1 = named_preset<"hwss-c1", integrator_config<unrestricted, relaxation::none, 1, bias::none>>;
 using hwss_c8 = named_preset<"hwss-c8", integrator_config<unrestricted, relaxation::none, 8, bias::none>>;
@@ -80,7 +87,8 @@ using hwss_visible =
 /// \brief Every preset, in the order the tools list them (`hwss` first: the baseline).
 using presets = type_list<preset::hwss, preset::paper, preset::paper_fast, preset::paper_quadratic, preset::box_linear,
                           preset::gaussian_linear, preset::scaled_pdf, preset::restrict_only, preset::hwss_c1,
-                          preset::hwss_c8, preset::hwss_visible, preset::paper_auto, preset::scaled_pdf_auto>;
+                          preset::hwss_c8, preset::hwss_visible, preset::paper_auto, preset::scaled_pdf_auto,
+                          preset::paper_fade, preset::paper_auto_fade>;
 
 namespace detail {
 template <std::size_t I, class List>

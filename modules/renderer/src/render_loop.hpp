@@ -43,7 +43,7 @@ inline std::uint64_t tile_body(const Integrator& integ, const Tracer& tracer, co
             sample_stream rng(job.sampler, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), pixel, job.sample);
             const glm::vec3 d = cam.direction(x, y, rng.next2());
             const path_sample s = integ.trace(tracer, cam.origin(), d, dist, alpha, rng);
-            f.add(static_cast<std::size_t>(pixel), s.value);
+            f.add(static_cast<std::size_t>(pixel), s.value, job.sample);
             rays += s.rays;
         }
     return rays;

@@ -104,13 +104,21 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
     if (opt.start_spp > 0 && (out.width() != w || out.height() != ht))
         throw std::invalid_argument(fmt::format("the film to resume is {}x{}, the render {}x{}", out.width(), out.height(), w, ht));
+    const bool fades = opt.estimator != "bsdf-only" &&
+                       dispatch_preset(opt.preset, []<class P>() { return P::accumulation_type::fades; });
+    if (fades && (opt.start_spp > 0 || opt.ranks > 1))
+        throw std::invalid_argument(fmt::format("preset '{}' fades its early samples out, and its film's fade layer is not in "
+                                                "checkpoints or exchanged between ranks yet: it cannot {}",
+                                                opt.preset, opt.start_spp > 0 ? "resume" : "run over several ranks"));
     const embree::intersector tracer(scene);
     if (opt.start_spp == 0) try {
         out = film(w, ht);
+        if (fades) out.enable_fade(static_cast<std::uint32_t>(opt.nthold));
     } catch (const std::bad_alloc&) {
-        const double bytes = static_cast<double>(w) * static_cast<double>(ht) * static_cast<double>(film::bytes_per_pixel);
+        const std::size_t per_pixel = film::bytes_per_pixel + (fades ? film::fade_bytes_per_pixel : 0);
+        const double bytes = static_cast<double>(w) * static_cast<double>(ht) * static_cast<double>(per_pixel);
         throw std::runtime_error(fmt::format("not enough memory for a {}x{} film ({:.2f} GiB at {} bytes per pixel)", w, ht,
-                                             bytes / (1024.0 * 1024.0 * 1024.0), film::bytes_per_pixel));
+                                             bytes / (1024.0 * 1024.0 * 1024.0), per_pixel));
     }
     status st;
     st.config_name = opt.estimator == "bsdf-only" ? std::string("bsdf-only") : config;
@@ -141,7 +149,7 @@ std::vector<preset_info> presets() {
     for_each_preset([&]<class P>() {
         constexpr bool unrestricted = std::is_same_v<typename P::kernel_type, restriction::unrestricted>;
         v.push_back({std::string(P::cli_name), std::string(P::name), P::wavelength_count,
-                     unrestricted || P::bias_type::propagates});
+                     unrestricted || P::bias_type::propagates, P::accumulation_type::fades});
     });
     return v;
 }

@@ -138,6 +138,9 @@ struct preset_info {
     /// true for an unrestricted kernel or the PropagateUnused bias; restriction-only and
     /// scaled-pdf are biased until N_thold.
     bool unbiased_before_nthold = false;
+    /// \brief The film fades the early samples out (accumulation::fade): its image is the
+    /// fade's blend, its mean the running mean.
+    bool fades = false;
 };
 
 /// \brief Every preset, in the order of the preset list.
