@@ -54,7 +54,7 @@ session::~session() {
 }
 
 film session::reduce(const film& local) const {
-    if (!m_active) return local;
+    if (!m_active || m_size == 1) return local;  // one rank: its film is the sum (with any fade layer)
     const std::size_t pixels = local.sums().size();
     std::vector<exact_xyz> sums(m_rank == 0 ? pixels : 0);
     std::vector<std::uint32_t> counts(m_rank == 0 ? pixels : 0), dropped(m_rank == 0 ? pixels : 0);
