@@ -157,6 +157,21 @@ MUTATIONS = [
     ("mpi-reduce-skipped (rank 0 writes its own film)",
      [("apps/iris-render/main.cpp", "        iris::film sum = mpi.reduce(local);", "        iris::film sum = local;")],
      ["iris-render"], "apps.render.mpi"),
+    # issue 16: the bias fade (each checked by hand on 2026-12-04: CAUGHT)
+    ("fade-weight-is-the-running-mean",
+     [("include/iris/render/fade.hpp", "    return std::clamp(s.var_late / denominator, 0.0, 1.0);", "    return running;")],
+     ["render_test"], "Fade"),
+    ("fade-weight-swapped",
+     [("include/iris/render/fade.hpp", "    return std::clamp(s.var_late / denominator, 0.0, 1.0);",
+       "    return std::clamp((s.var_both - s.var_late) / denominator, 0.0, 1.0);")],
+     ["render_test"], "Fade"),
+    ("fade-denominator-without-the-difference",
+     [("include/iris/render/fade.hpp", "    const double denominator = std::max(s.diff_sq, s.var_both);",
+       "    const double denominator = s.var_both;")],
+     ["render_test"], "Fade"),
+    ("fade-split-off-by-one",
+     [("include/iris/render/film.hpp", "            const bool early = sample < split;", "            const bool early = sample <= split;")],
+     ["render_test"], "Fade"),
 ]
 
 
