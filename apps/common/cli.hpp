@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -28,5 +29,9 @@ int run(CLI::App& app, int argc, char** argv);
 
 /// \brief Parse a finite number from `text`, or throw usage_error naming `what`.
 double parse_number(const std::string& text, const std::string& what);
+
+/// \brief The items of a comma-separated list ("hwss,paper" → {"hwss", "paper"}); empty
+/// items are dropped, nothing is trimmed.
+std::vector<std::string> split_list(const std::string& text);
 
 }  // namespace iris::app

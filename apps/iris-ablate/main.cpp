@@ -16,7 +16,6 @@
 // and DIR/summary.md. Bad arguments: one line on stderr, exit 2.
 #include <algorithm>
 #include <cstdlib>
-#include <sstream>
 
 #include <fmt/core.h>
 
@@ -26,15 +25,6 @@
 #include "cli.hpp"
 
 namespace {
-
-std::vector<std::string> split(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
 
 std::filesystem::path default_cache() {
     if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "iris";
@@ -76,10 +66,10 @@ int main(int argc, char** argv) {
     app.add_option("--crop", o.crop, "crop rectangle x,y,w,h for the side-by-side PNG (default: the centre)");
     app.add_option("-o,--output", out, "output directory")->required();
     app.callback([&] {
-        o.presets = split(presets);
+        o.presets = iris::app::split_list(presets);
         if (o.presets.empty()) throw iris::app::usage_error("--presets is empty");
         o.spp.clear();
-        for (const auto& s : split(spp)) {
+        for (const auto& s : iris::app::split_list(spp)) {
             const double v = iris::app::parse_number(s, "--spp entry");
             if (v < 1 || v > 1e7 || v != static_cast<int>(v))
                 throw iris::app::usage_error(fmt::format("--spp entries must be integers in 1..1e7, got '{}'", s));
@@ -88,7 +78,7 @@ int main(int argc, char** argv) {
         if (o.spp.empty()) throw iris::app::usage_error("--spp is empty");
         std::sort(o.spp.begin(), o.spp.end());
         o.spp.erase(std::unique(o.spp.begin(), o.spp.end()), o.spp.end());
-        for (auto b : split(budgets)) {
+        for (auto b : iris::app::split_list(budgets)) {
             if (!b.empty() && b.back() == 's') b.pop_back();
             const double v = iris::app::parse_number(b, "--time-budgets entry");
             if (!(v > 0 && v <= 86400)) throw iris::app::usage_error(fmt::format("time budgets must be in (0, 86400] s, got '{}'", b));

@@ -32,7 +32,6 @@
 #include <mutex>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include <unistd.h>
@@ -49,6 +48,7 @@
 #endif
 
 #include "cli.hpp"
+#include "tev_option.hpp"
 
 namespace {
 
@@ -97,15 +97,6 @@ int next_turn(const std::vector<std::unique_ptr<lane>>& lanes, bool equal_spp) {
     return best;
 }
 
-std::vector<std::string> split(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
-
 /// \brief The presets' images left to right, in order, 4 black pixels apart.
 iris::image side_by_side(const std::vector<iris::image>& images) {
     constexpr int gap = 4;
@@ -138,7 +129,7 @@ std::string file_safe(std::string s) {
 }
 
 int compare_presets(const args& a) {
-    const auto presets = split(a.presets);
+    const auto presets = iris::app::split_list(a.presets);
     if (presets.size() < 2) throw iris::app::usage_error(fmt::format("--presets needs two or more presets, got '{}'", a.presets));
     if (std::set<std::string>(presets.begin(), presets.end()).size() != presets.size())
         throw iris::app::usage_error(fmt::format("--presets names a preset twice: '{}'", a.presets));
@@ -157,13 +148,9 @@ int compare_presets(const args& a) {
         throw iris::app::usage_error("--width and --height go together and must be in 1..16384");
 #if IRIS_HAVE_TEV
     iris::tev::address tev_address;
-    if (a.tev_on) try {
-            tev_address = iris::tev::parse_address(a.tev);
-        } catch (const std::invalid_argument& e) {
-            throw iris::app::usage_error(fmt::format("--tev: {}", e.what()));
-        }
+    if (a.tev_on) tev_address = iris::app::tev_option(a.tev);
 #else
-    if (a.tev_on) throw iris::app::usage_error("--tev: this build has no tev client");
+    if (a.tev_on) iris::app::tev_option(a.tev);
 #endif
     iris::scene_desc scene;
     try {

@@ -54,6 +54,7 @@
 #endif
 
 #include "cli.hpp"
+#include "tev_option.hpp"
 
 namespace {
 
@@ -238,13 +239,9 @@ int run_render(const args& a, const ranks_session& mpi) {
     if (a.tev_seconds < 0) throw iris::app::usage_error("--tev-seconds must be >= 0");
 #if IRIS_HAVE_TEV
     iris::tev::address tev_address;
-    if (a.tev_on) try {
-            tev_address = iris::tev::parse_address(a.tev);
-        } catch (const std::invalid_argument& e) {
-            throw iris::app::usage_error(fmt::format("--tev: {}", e.what()));
-        }
+    if (a.tev_on) tev_address = iris::app::tev_option(a.tev);
 #else
-    if (a.tev_on) throw iris::app::usage_error("--tev: this build has no tev client");
+    if (a.tev_on) iris::app::tev_option(a.tev);
 #endif
     try {
         (void)iris::renderer::config_name(a.preset);
