@@ -18,9 +18,8 @@
 //
 // Under mpirun, rank r renders the passes i ≡ r (mod N); rank 0 sums the ranks' films
 // exactly (iris::mpi) and writes everything. The image is the single process's, bit for
-// bit, for any N, and a checkpoint made with one N resumes with another. A fading preset
-// (paper-fade, paper-auto-fade: accumulation.hpp) writes no checkpoint and runs in one
-// process: its film's fade layer is in neither format yet.
+// bit, for any N, and a checkpoint made with one N resumes with another — for the fading
+// presets too (paper-fade, paper-auto-fade: their film's fade layer is in both).
 // Bad arguments, checkpoints of another render or corrupt ones: one line on stderr,
 // exit 2, nothing written.
 #include <algorithm>
@@ -248,15 +247,6 @@ int run_render(const args& a, const ranks_session& mpi) {
     } catch (const std::invalid_argument& e) {
         throw iris::app::usage_error(e.what());
     }
-    // A fading preset's film keeps a fade layer that checkpoints do not store (film.hpp):
-    // such a render writes no checkpoint and cannot resume.
-    bool fades = false;
-    for (const auto& p : iris::renderer::presets())
-        if (p.name == a.preset) fades = p.fades && a.estimator != "bsdf-only";
-    if (fades && a.resume)
-        throw iris::app::usage_error(fmt::format("--resume: preset '{}' fades its early samples out and its checkpoints "
-                                                 "would lack the fade layer, so it writes none to resume from",
-                                                 a.preset));
     require_extension(a.out, ".exr", "-o");
     require_extension(a.png, ".png", "--png");
     const auto same_file = [](const std::string& x, const std::string& y) {
@@ -376,7 +366,7 @@ int run_render(const args& a, const ranks_session& mpi) {
 #if IRIS_HAVE_TEV
         if (image && tev) post(sum);
 #endif
-        if (checkpoint && !fades)
+        if (checkpoint)
             iris::renderer::write_checkpoint(ckpt, {key, st.spp_done, resumed.samples + totals.samples,
                                                     resumed.rays + totals.rays, resumed.seconds + totals.seconds,
                                                     std::move(sum)});

@@ -3,7 +3,8 @@
 #
 # 1. The prism (dispersive) with `paper`, rendered by one process without mpirun and by
 #    mpirun -np 1, 2 and 3: the four images must be the same bytes (the ranks' passes are
-#    interleaved, their films summed exactly on rank 0).
+#    interleaved, their films summed exactly on rank 0); `paper-fade` with 2 ranks, whose
+#    films' fade layers are summed too, the same bytes as in one process.
 # 2. A rank killed (SIGKILL) during a 2-rank render: mpirun must end with a non-zero status
 #    and say which rank died; the last image and checkpoint must be intact, and resuming
 #    them with 3 ranks must give the uninterrupted render's bytes.
@@ -36,6 +37,11 @@ for n in 1 2 3; do
   grep -q "\"ranks\": $n," ranks$n.json || fail "-np $n: the stats do not say $n ranks: $(cat ranks$n.json)"
   cmp -s ranks$n.exr single.exr || fail "the $n-rank image differs from the single-process image"
 done
+# the fading preset: the ranks' fade layers are summed too (or the blend would differ)
+"$render" "${args[@]/paper/paper-fade}" --spp 40 -o fade-single.exr >out.txt 2>err.txt || fail "single-process paper-fade failed"
+"${mpi[@]}" -np 2 "$render" "${args[@]/paper/paper-fade}" --threads 1 --spp 40 -o fade-ranks2.exr >out.txt 2>err.txt ||
+  fail "mpirun -np 2 paper-fade failed"
+cmp -s fade-ranks2.exr fade-single.exr || fail "the 2-rank paper-fade image differs from the single-process image"
 
 # ---- 2. a dead rank
 "$render" "${args[@]}" --spp 1500 --threads 2 -o full.exr >out.txt 2>err.txt || fail "the uninterrupted render failed"
@@ -78,4 +84,4 @@ finish
 grep -q "(interrupted)" out.txt || fail "rank 0 did not finish its interrupted render: $(cat out.txt)"
 "$render" "${args[@]}" --spp 1500 --threads 2 -o term.exr --resume >out.txt 2>err.txt || fail "1-process resume failed"
 cmp -s term.exr full.exr || fail "the resumed image differs from the uninterrupted render"
-echo "ok: 1, 2, 3 ranks identical; dead rank and SIGTERM resumed with 3 ranks and 1 process to the same bytes"
+echo "ok: 1, 2, 3 ranks identical (paper-fade with 2 too); dead rank and SIGTERM resumed with 3 ranks and 1 process to the same bytes"

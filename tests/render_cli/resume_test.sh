@@ -4,6 +4,7 @@
 # A render of the prism (dispersive) with `paper` is stopped by SIGINT, SIGTERM and
 # SIGKILL (between checkpoints), and resumed with --resume; every resumed image must be
 # the uninterrupted render's, byte for byte. SIGINT's render is stopped and resumed twice.
+# A paper-fade render (its film's fade layer in the checkpoint) is stopped and resumed too.
 # Then checkpoints of another render (seed, spp, preset, sampler, size), damaged ones
 # (a flipped byte, a truncated file) and missing ones must give exit 2, a message naming
 # the problem, and leave the image and the checkpoint untouched; so must a new render
@@ -25,6 +26,7 @@ rm -rf "$dir" && mkdir -p "$dir" || fail "cannot create $dir"
 cd "$dir" || fail "cannot enter $dir"
 args=(prism --preset paper --width 48 --height 32 --spp 600 --nthold 64 --threads 2)
 
+full=full.exr
 "$render" "${args[@]}" -o full.exr >out.txt 2>err.txt || fail "the uninterrupted render failed"
 [ -e full.exr.ckpt ] && fail "a complete render left its checkpoint"
 
@@ -52,7 +54,7 @@ stop() {  # stop SIGNAL EXPECTED_STATUS
 resume() {  # resume OUT: must end with the uninterrupted image and no checkpoint
   "$render" "${args[@]}" -o "$1" --resume --stats "$1.json" >out.txt 2>err.txt || fail "resume of $1 failed"
   grep -q '"resumed_from_spp": [1-9]' "$1.json" || fail "$1 did not resume from a checkpoint: $(cat "$1.json")"
-  cmp -s "$1" full.exr || fail "resumed $1 differs from the uninterrupted render"
+  cmp -s "$1" "$full" || fail "resumed $1 differs from the uninterrupted render $full"
   [ -e "$1.ckpt" ] && fail "$1.ckpt left after the render completed"
 }
 
@@ -109,4 +111,13 @@ rm keep.exr.ckpt
 "$render" "${args[@]}" -o keep.exr --resume >out.txt 2>err.txt
 [ $? -eq 2 ] || fail "--resume without a checkpoint: exit status not 2"
 grep -q "cannot read checkpoint 'keep.exr.ckpt': no such file" err.txt || fail "--resume without a checkpoint: $(cat err.txt)"
-echo "ok: SIGINT (twice), SIGTERM and SIGKILL resumed to the same bytes; mismatches and damage refused"
+
+# ---- a fading preset: its checkpoint carries the film's fade layer, so SIGTERM and resume
+# give the uninterrupted blend (without the layer the renderer refuses to go on)
+args=(prism --preset paper-fade --width 48 --height 32 --spp 600 --nthold 64 --threads 2)
+full=fade-full.exr
+"$render" "${args[@]}" -o fade-full.exr >out.txt 2>err.txt || fail "the uninterrupted paper-fade render failed"
+start fade.exr
+stop TERM 143
+resume fade.exr
+echo "ok: SIGINT (twice), SIGTERM and SIGKILL resumed to the same bytes (paper-fade too); mismatches and damage refused"

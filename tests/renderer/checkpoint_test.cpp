@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -182,9 +183,9 @@ TEST_F(CheckpointFile, DamagedFilesAreRefusedWithTheReason) {
     expect_refused("does not start with IRISCKPT");
     {
         std::string b = good;
-        b[8] = 2;  // format version 2
+        b[8] = 3;  // format version 3
         rewrite(b);
-        expect_refused("format version 2");
+        expect_refused("format version 3");
     }
     {
         std::string b = good;  // a header field that is not a number
@@ -203,6 +204,65 @@ TEST_F(CheckpointFile, AFilmThatDoesNotHoldSppDoneSamplesIsRefused) {
     c.spp_done = 2;
     iris::renderer::write_checkpoint(path, c);
     expect_refused("pixel 0 has 3 samples, spp_done is 2");
+}
+
+// Format version 1 (before the fade layer: no fade_split) is still read, to the same film.
+// Would catch a reader that demands fade_split of every file.
+TEST_F(CheckpointFile, VersionOneIsStillRead) {
+    std::string b = bytes();
+    const std::string field = "fade_split=0\n";
+    const auto at = b.find(field);
+    ASSERT_NE(at, std::string::npos);
+    b.erase(at, field.size());
+    b[8] = 1;
+    std::uint32_t length = 0;
+    std::memcpy(&length, b.data() + 12, 4);
+    length -= static_cast<std::uint32_t>(field.size());
+    std::memcpy(b.data() + 12, &length, 4);
+    std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a of everything before the checksum
+    for (std::size_t i = 0; i + 8 < b.size(); ++i) h = (h ^ static_cast<unsigned char>(b[i])) * 0x100000001b3ull;
+    std::memcpy(b.data() + b.size() - 8, &h, 8);
+    rewrite(b);
+    const checkpoint r = iris::renderer::read_checkpoint(path);
+    EXPECT_FALSE(r.image.fades());
+    expect_identical(r.image, c.image);
+}
+
+// A fading preset's film (paper-fade, N_thold 4, stopped after 6 passes: both sides hold
+// samples) reads back with its fade layer bit for bit and the same blended image; a layer
+// whose early counts are not min(spp_done, split) is refused. Would catch a writer or
+// reader that drops the layer, one side of it, or a square sum's high part.
+TEST_F(CheckpointFile, AFadingFilmKeepsItsFadeLayer) {
+    auto o = small("zsobol");
+    o.preset = "paper-fade";
+    iris::renderer::hooks stop;
+    stop.on_pass = [](const iris::film&, const iris::renderer::status& st) { return st.spp_done < 6; };
+    checkpoint f = c;
+    f.key.preset = "paper-fade";
+    (void)iris::renderer::render(iris::scene::builtin_scene("prism"), o, f.image, stop);
+    f.spp_done = 6;
+    iris::renderer::write_checkpoint(path, f);
+    const checkpoint r = iris::renderer::read_checkpoint(path);
+    ASSERT_TRUE(r.image.fades());
+    expect_identical(r.image, f.image);
+    const iris::film::fade_parts *pa = f.image.fade_state(), *pb = r.image.fade_state();
+    ASSERT_TRUE(pa != nullptr && pb != nullptr);
+    const auto &a = *pa, &b = *pb;
+    EXPECT_EQ(b.split, 4u);
+    EXPECT_EQ(a.early_sum, b.early_sum);
+    EXPECT_EQ(a.early_count, b.early_count);
+    EXPECT_EQ(a.early_sq, b.early_sq);
+    EXPECT_EQ(a.late_sq, b.late_sq);
+    const auto x = f.image.to_image(), y = r.image.to_image();
+    for (std::size_t i = 0; i < x.pixels().size(); ++i) ASSERT_EQ(x.pixels()[i].r, y.pixels()[i].r) << "pixel " << i;
+
+    auto broken = a;
+    broken.early_count[7] = 3;
+    const auto& img = f.image;
+    f.image = iris::film::from_parts(24, 16, {img.sums().begin(), img.sums().end()}, {img.counts().begin(), img.counts().end()},
+                                     {img.dropped_counts().begin(), img.dropped_counts().end()}, broken);
+    iris::renderer::write_checkpoint(path, f);
+    expect_refused("pixel 7 has 3 early samples in the fade layer, 4 with spp_done 6 and fade_split 4");
 }
 
 // key_mismatch names the first field that differs, with both values.

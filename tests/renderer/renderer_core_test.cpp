@@ -127,7 +127,10 @@ TEST(RendererCore, WhiteFurnaceIsFiveForEveryPresetBeforeAndAfterNthold) {
 // accumulation::fade changes what the film shows, not which samples it takes: `paper-fade`'s
 // running mean is `paper`'s bit for bit, and so is its image until two samples have been
 // taken at α = 1 (N_thold + 2); after that the image is the blend, which differs. A fading
-// render refuses to resume or to run over ranks (its fade layer is not in checkpoints).
+// render resumed at a pass, or split over ranks, gives the uninterrupted film's fade layer
+// and image bit for bit (would catch a resumed film without its layer, or a rank's layer
+// left out of the merge: the blend would differ); a film without the layer, or split at
+// another N_thold, is refused.
 TEST(RendererCore, PaperFadeTakesPapersSamplesAndFadesOnlyAfterNthold) {
     const auto s = iris::test::furnace(0.8);
     options o;
@@ -155,17 +158,50 @@ TEST(RendererCore, PaperFadeTakesPapersSamplesAndFadesOnlyAfterNthold) {
         }
         EXPECT_EQ(image_same, spp < o.nthold + 2) << spp << " spp";
     }
+    const auto whole = run("paper-fade", 16);
+    const auto expect_same = [&](const iris::film& f) {
+        const iris::film::fade_parts *pa = whole.fade_state(), *pb = f.fade_state();
+        ASSERT_TRUE(pa != nullptr && pb != nullptr);
+        const auto &a = *pa, &b = *pb;
+        for (std::size_t i = 0; i < 120; ++i) {
+            ASSERT_EQ(whole.sum(i), f.sum(i)) << "pixel " << i;
+            ASSERT_EQ(a.early_sum[i], b.early_sum[i]) << "pixel " << i;
+            ASSERT_EQ(a.early_count[i], b.early_count[i]) << "pixel " << i;
+            ASSERT_EQ(a.early_sq[i], b.early_sq[i]) << "pixel " << i;
+            ASSERT_EQ(a.late_sq[i], b.late_sq[i]) << "pixel " << i;
+        }
+        const auto x = whole.to_image(), y = f.to_image();
+        for (std::size_t i = 0; i < 120; ++i) ASSERT_EQ(x.pixels()[i].g, y.pixels()[i].g) << "pixel " << i;
+    };
     auto resume = o;
     resume.preset = "paper-fade";
     resume.spp = 16;
-    resume.start_spp = 8;
-    iris::film f = run("paper-fade", 8);
-    EXPECT_THROW(iris::renderer::render(s, resume, f, {}), std::invalid_argument);
-    auto ranks = o;
-    ranks.preset = "paper-auto-fade";
-    ranks.spp = 16;
-    ranks.ranks = 2;
-    EXPECT_THROW(iris::renderer::render(s, ranks, f, {}), std::invalid_argument);
+    resume.start_spp = 5;  // before N_thold = 8: the resumed passes are early and late
+    {
+        iris::film f = run("paper-fade", 5);
+        iris::renderer::render(s, resume, f, {});
+        expect_same(f);
+    }
+    for (int start : {0, 5}) {  // ranks 0 and 1 of 2, from the start and from a resumed film
+        SCOPED_TRACE(start);
+        iris::film sum = start > 0 ? run("paper-fade", start) : iris::film(12, 10);
+        if (start == 0) sum.enable_fade(8);
+        for (int r = 0; r < 2; ++r) {
+            auto part = resume;
+            part.start_spp = start;
+            part.rank = r;
+            part.ranks = 2;
+            iris::film f(12, 10);  // an empty film: the renderer gives it the layer
+            iris::renderer::render(s, part, f, {});
+            sum.merge(f);
+        }
+        expect_same(sum);
+    }
+    iris::film plain = run("paper", 5);  // no fade layer to go on from
+    EXPECT_THROW(iris::renderer::render(s, resume, plain, {}), std::invalid_argument);
+    iris::film other = run("paper-fade", 5);
+    resume.nthold = 6;  // the film splits at 8
+    EXPECT_THROW(iris::renderer::render(s, resume, other, {}), std::invalid_argument);
 }
 
 TEST(RendererCore, RestrictOnlyIsDimBeforeNtholdNegativeControl) {

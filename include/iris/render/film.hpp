@@ -18,9 +18,9 @@
 /// **The fade layer** (accumulation::fade, iris/render/fade.hpp), off unless `enable_fade`
 /// switches it on: the sums of the samples with index < split (taken while α < 1) kept
 /// apart, and the exact second moments of both sides. `mean` stays the running mean over
-/// every sample; `to_image` shows the fade's blend. The layer is not part of `sums()` /
-/// `from_parts` (checkpoints, MPI): the renderer refuses to resume or distribute a fading
-/// render.
+/// every sample; `to_image` shows the fade's blend. The layer's state (`fade_state`, and
+/// `from_parts` with it) is exact like the sums, so checkpoints and the ranks' reduction
+/// carry it, and a fading render resumed or distributed gives the same image bit for bit.
 
 #include <array>
 #include <cmath>
@@ -158,6 +158,45 @@ public:
     /// \brief The neighbourhood radius of the fade's weights: 5 × 5 pixels.
     static constexpr int fade_radius = 2;
 
+    /// \brief The fade layer's state (enable_fade): the split, and per pixel (row-major) the
+    /// early samples' exact XYZ sums and count, and both sides' exact sums of squares (X, Y, Z).
+    struct fade_parts {
+        std::uint32_t split = 0;
+        std::vector<exact_xyz> early_sum;
+        std::vector<std::uint32_t> early_count;
+        std::vector<std::array<fade::square_sum, 3>> early_sq, late_sq;
+        fade_parts() = default;
+        fade_parts(std::size_t pixels, std::uint32_t split_at)
+            : split(split_at), early_sum(pixels), early_count(pixels, 0), early_sq(pixels), late_sq(pixels) {}
+        void add(std::size_t i, const xyz& v, std::uint64_t sample) noexcept {
+            const bool early = sample < split;
+            auto& sq = early ? early_sq[i] : late_sq[i];
+            sq[0].add(fade::to_fixed_square(v.x));
+            sq[1].add(fade::to_fixed_square(v.y));
+            sq[2].add(fade::to_fixed_square(v.z));
+            if (!early) return;
+            ++early_count[i];
+            early_sum[i].x += to_fixed(v.x);
+            early_sum[i].y += to_fixed(v.y);
+            early_sum[i].z += to_fixed(v.z);
+        }
+        void merge(const fade_parts& o) noexcept {
+            for (std::size_t i = 0; i < early_sum.size(); ++i) {
+                early_sum[i].x += o.early_sum[i].x;
+                early_sum[i].y += o.early_sum[i].y;
+                early_sum[i].z += o.early_sum[i].z;
+                early_count[i] += o.early_count[i];
+                for (std::size_t c = 0; c < 3; ++c) {
+                    early_sq[i][c].add(o.early_sq[i][c]);
+                    late_sq[i][c].add(o.late_sq[i][c]);
+                }
+            }
+        }
+    };
+
+    /// \brief The fade layer (nullptr without one): what checkpoints store and ranks sum.
+    const fade_parts* fade_state() const noexcept { return m_fade ? &*m_fade : nullptr; }
+
     /// \brief Mean XYZ of pixel `i` (0 before its first sample).
     xyz mean(std::size_t i) const noexcept {
         const double n = static_cast<double>(m_count[i]);
@@ -183,16 +222,28 @@ public:
     std::span<const std::uint32_t> counts() const noexcept { return m_count; }
     std::span<const std::uint32_t> dropped_counts() const noexcept { return m_dropped; }
 
-    /// \brief A film with the given state. \throws std::invalid_argument if a part does not
-    /// have width · height entries or a pixel has more dropped samples than samples.
+    /// \brief A film with the given state, with a fade layer if `fade` is given.
+    /// \throws std::invalid_argument if a part does not have width · height entries, a pixel
+    /// has more dropped samples than samples, or (fade layer) the split is 0 or a pixel has
+    /// more early samples than samples or than the split.
     static film from_parts(int width, int height, std::vector<exact_xyz> sums, std::vector<std::uint32_t> counts,
-                           std::vector<std::uint32_t> dropped) {
+                           std::vector<std::uint32_t> dropped, std::optional<fade_parts> fade = std::nullopt) {
         film f(0, 0);
         const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
         if (width < 0 || height < 0 || sums.size() != n || counts.size() != n || dropped.size() != n)
             throw std::invalid_argument("film::from_parts: the parts do not have width x height entries");
         for (std::size_t i = 0; i < n; ++i)
             if (dropped[i] > counts[i]) throw std::invalid_argument("film::from_parts: more dropped samples than samples");
+        if (fade) {
+            if (fade->split == 0) throw std::invalid_argument("film::from_parts: a fade layer that splits at sample 0");
+            if (fade->early_sum.size() != n || fade->early_count.size() != n || fade->early_sq.size() != n ||
+                fade->late_sq.size() != n)
+                throw std::invalid_argument("film::from_parts: the fade layer does not have width x height entries");
+            for (std::size_t i = 0; i < n; ++i)
+                if (fade->early_count[i] > counts[i] || fade->early_count[i] > fade->split)
+                    throw std::invalid_argument("film::from_parts: a pixel has more early samples than samples or than the split");
+        }
+        f.m_fade = std::move(fade);
         f.m_width = width;
         f.m_height = height;
         f.m_sum = std::move(sums);
@@ -233,45 +284,11 @@ public:
     }
 
 private:
-    /// \brief The fade layer's state (enable_fade).
-    struct fade_layer {
-        std::uint32_t split;
-        std::vector<exact_xyz> early_sum;
-        std::vector<std::uint32_t> early_count;
-        std::vector<std::array<fade::square_sum, 3>> early_sq, late_sq;
-        fade_layer(std::size_t pixels, std::uint32_t split_at)
-            : split(split_at), early_sum(pixels), early_count(pixels, 0), early_sq(pixels), late_sq(pixels) {}
-        void add(std::size_t i, const xyz& v, std::uint64_t sample) noexcept {
-            const bool early = sample < split;
-            auto& sq = early ? early_sq[i] : late_sq[i];
-            sq[0].add(fade::to_fixed_square(v.x));
-            sq[1].add(fade::to_fixed_square(v.y));
-            sq[2].add(fade::to_fixed_square(v.z));
-            if (!early) return;
-            ++early_count[i];
-            early_sum[i].x += to_fixed(v.x);
-            early_sum[i].y += to_fixed(v.y);
-            early_sum[i].z += to_fixed(v.z);
-        }
-        void merge(const fade_layer& o) noexcept {
-            for (std::size_t i = 0; i < early_sum.size(); ++i) {
-                early_sum[i].x += o.early_sum[i].x;
-                early_sum[i].y += o.early_sum[i].y;
-                early_sum[i].z += o.early_sum[i].z;
-                early_count[i] += o.early_count[i];
-                for (std::size_t c = 0; c < 3; ++c) {
-                    early_sq[i][c].add(o.early_sq[i][c]);
-                    late_sq[i][c].add(o.late_sq[i][c]);
-                }
-            }
-        }
-    };
-
     int m_width, m_height;
     std::vector<exact_xyz> m_sum;
     std::vector<std::uint32_t> m_count;
     std::vector<std::uint32_t> m_dropped;
-    std::optional<fade_layer> m_fade;
+    std::optional<fade_parts> m_fade;
 };
 
 }  // namespace iris

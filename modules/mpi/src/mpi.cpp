@@ -2,9 +2,13 @@
 #include "iris/mpi/mpi.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <stdexcept>
+#include <span>
 #include <string>
+#include <utility>
+#include <optional>
 #include <vector>
 
 #include <fmt/core.h>
@@ -21,14 +25,57 @@ void check(int rc, const char* call) {
     throw std::runtime_error(fmt::format("{} failed: {}", call, std::string(text, static_cast<std::size_t>(n))));
 }
 
-/// \brief The user operation: element-wise 128-bit integer addition (commutative).
+/// \brief The user operations: element-wise exact addition of the film's sums (three
+/// 128-bit integers) and of the fade layer's sums of squares (three 192-bit ones).
 extern "C" void add_exact(void* in, void* inout, int* len, MPI_Datatype*) {
-    const auto* a = static_cast<const exact_int*>(in);
-    auto* b = static_cast<exact_int*>(inout);
-    for (int i = 0; i < *len; ++i) b[i] += a[i];
+    const auto* a = static_cast<const exact_xyz*>(in);
+    auto* b = static_cast<exact_xyz*>(inout);
+    for (int i = 0; i < *len; ++i) {
+        b[i].x += a[i].x;
+        b[i].y += a[i].y;
+        b[i].z += a[i].z;
+    }
+}
+using square_xyz = std::array<fade::square_sum, 3>;
+extern "C" void add_squares(void* in, void* inout, int* len, MPI_Datatype*) {
+    const auto* a = static_cast<const square_xyz*>(in);
+    auto* b = static_cast<square_xyz*>(inout);
+    for (int i = 0; i < *len; ++i)
+        for (std::size_t c = 0; c < 3; ++c) b[i][c].add(a[i][c]);
 }
 
-constexpr std::size_t chunk_pixels = std::size_t{1} << 20;
+/// \brief An MPI datatype of `bytes` contiguous bytes and an operation on it, freed with it.
+class exact_op {
+public:
+    exact_op(std::size_t bytes, MPI_User_function* f) {
+        check(MPI_Type_contiguous(static_cast<int>(bytes), MPI_BYTE, &type), "MPI_Type_contiguous");
+        check(MPI_Type_commit(&type), "MPI_Type_commit");
+        check(MPI_Op_create(f, 1, &op), "MPI_Op_create");
+    }
+    ~exact_op() {
+        MPI_Op_free(&op);
+        MPI_Type_free(&type);
+    }
+    exact_op(const exact_op&) = delete;
+    exact_op& operator=(const exact_op&) = delete;
+    MPI_Datatype type{};
+    MPI_Op op{};
+};
+
+/// \brief Sum `local` over the ranks into `root_out` (rank 0's; others pass an empty one),
+/// in chunks (MPI counts are ints).
+template <class T>
+void reduce_to_root(std::span<const T> local, std::vector<T>& root_out, bool root, MPI_Datatype type, MPI_Op op,
+                    const char* what) {
+    constexpr std::size_t chunk = std::size_t{1} << 20;
+    if (root) root_out.resize(local.size());
+    for (std::size_t begin = 0; begin < local.size(); begin += chunk) {
+        const std::size_t n = std::min(chunk, local.size() - begin);
+        check(MPI_Reduce(local.data() + begin, root ? root_out.data() + begin : nullptr, static_cast<int>(n), type, op, 0,
+                         MPI_COMM_WORLD),
+              what);
+    }
+}
 
 }  // namespace
 
@@ -55,37 +102,29 @@ session::~session() {
 
 film session::reduce(const film& local) const {
     if (!m_active || m_size == 1) return local;  // one rank: its film is the sum (with any fade layer)
-    const std::size_t pixels = local.sums().size();
-    std::vector<exact_xyz> sums(m_rank == 0 ? pixels : 0);
-    std::vector<std::uint32_t> counts(m_rank == 0 ? pixels : 0), dropped(m_rank == 0 ? pixels : 0);
-    MPI_Datatype int128;
-    check(MPI_Type_contiguous(static_cast<int>(sizeof(exact_int)), MPI_BYTE, &int128), "MPI_Type_contiguous");
-    check(MPI_Type_commit(&int128), "MPI_Type_commit");
-    MPI_Op add;
-    check(MPI_Op_create(&add_exact, 1, &add), "MPI_Op_create");
-    try {
-        for (std::size_t begin = 0; begin < pixels; begin += chunk_pixels) {
-            const std::size_t n = std::min(chunk_pixels, pixels - begin);
-            const int n3 = static_cast<int>(3 * n), n1 = static_cast<int>(n);
-            check(MPI_Reduce(local.sums().data() + begin, m_rank == 0 ? sums.data() + begin : nullptr, n3, int128, add, 0,
-                             MPI_COMM_WORLD),
-                  "MPI_Reduce (sums)");
-            check(MPI_Reduce(local.counts().data() + begin, m_rank == 0 ? counts.data() + begin : nullptr, n1,
-                             MPI_UINT32_T, MPI_SUM, 0, MPI_COMM_WORLD),
-                  "MPI_Reduce (counts)");
-            check(MPI_Reduce(local.dropped_counts().data() + begin, m_rank == 0 ? dropped.data() + begin : nullptr, n1,
-                             MPI_UINT32_T, MPI_SUM, 0, MPI_COMM_WORLD),
-                  "MPI_Reduce (dropped)");
-        }
-    } catch (...) {
-        MPI_Op_free(&add);
-        MPI_Type_free(&int128);
-        throw;
+    const bool root = m_rank == 0;
+    const exact_op sums_op(sizeof(exact_xyz), &add_exact), squares_op(sizeof(square_xyz), &add_squares);
+    std::vector<exact_xyz> sums;
+    std::vector<std::uint32_t> counts, dropped;
+    reduce_to_root(local.sums(), sums, root, sums_op.type, sums_op.op, "MPI_Reduce (sums)");
+    reduce_to_root(local.counts(), counts, root, MPI_UINT32_T, MPI_SUM, "MPI_Reduce (counts)");
+    reduce_to_root(local.dropped_counts(), dropped, root, MPI_UINT32_T, MPI_SUM, "MPI_Reduce (dropped)");
+    std::optional<film::fade_parts> fade;
+    if (const film::fade_parts* l = local.fade_state()) {  // every rank runs the same preset: all fade or none
+        fade.emplace();
+        fade->split = l->split;
+        using span_xyz = std::span<const exact_xyz>;
+        using span_u32 = std::span<const std::uint32_t>;
+        using span_sq = std::span<const square_xyz>;
+        reduce_to_root(span_xyz(l->early_sum), fade->early_sum, root, sums_op.type, sums_op.op, "MPI_Reduce (fade: early sums)");
+        reduce_to_root(span_u32(l->early_count), fade->early_count, root, MPI_UINT32_T, MPI_SUM,
+                       "MPI_Reduce (fade: early counts)");
+        reduce_to_root(span_sq(l->early_sq), fade->early_sq, root, squares_op.type, squares_op.op, "MPI_Reduce (fade: squares)");
+        reduce_to_root(span_sq(l->late_sq), fade->late_sq, root, squares_op.type, squares_op.op, "MPI_Reduce (fade: squares)");
     }
-    MPI_Op_free(&add);
-    MPI_Type_free(&int128);
-    if (m_rank != 0) return film(0, 0);
-    return film::from_parts(local.width(), local.height(), std::move(sums), std::move(counts), std::move(dropped));
+    if (!root) return film(0, 0);
+    return film::from_parts(local.width(), local.height(), std::move(sums), std::move(counts), std::move(dropped),
+                            std::move(fade));
 }
 
 int session::max(int value) const {

@@ -1,6 +1,7 @@
 // Checkpoint files (format in iris/renderer/checkpoint.hpp).
 #include "iris/renderer/checkpoint.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cstring>
@@ -8,6 +9,7 @@
 #include <functional>
 #include <span>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <system_error>
 #include <utility>
@@ -22,9 +24,13 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "checkpoints are little-endian");
 static_assert(sizeof(exact_xyz) == 48);
+/// A square sum is stored as its 128-bit low part and 64-bit high part (24 bytes, no padding).
+constexpr std::size_t square_bytes = sizeof(fade::exact_uint) + sizeof(std::uint64_t);
+/// A fade layer's bytes per pixel in the file: early sums, early count, 6 square sums.
+constexpr std::size_t fade_file_bytes = sizeof(exact_xyz) + sizeof(std::uint32_t) + 6 * square_bytes;
 
 constexpr char magic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', 'T'};
-constexpr std::uint32_t format_version = 1;
+constexpr std::uint32_t format_version = 2;  // 1: no fade layer, no fade_split (still read)
 constexpr int max_side = 16384;
 
 std::uint64_t fnv1a(const char* data, std::size_t n) noexcept {
@@ -111,9 +117,12 @@ void write_checkpoint(const std::filesystem::path& path, const checkpoint& c) {
     const film& f = c.image;
     std::string header;
     for (const auto& [k, v] : fields(c.key)) header += k + "=" + v + "\n";
-    header += fmt::format("spp_done={}\nsamples={}\nrays={}\nseconds={}\n", c.spp_done, c.samples, c.rays, c.seconds);
+    const film::fade_parts* fade = f.fade_state();
+    header += fmt::format("spp_done={}\nsamples={}\nrays={}\nseconds={}\nfade_split={}\n", c.spp_done, c.samples, c.rays,
+                          c.seconds, fade ? fade->split : 0);
     std::string out;
-    out.reserve(24 + header.size() + f.sums().size_bytes() + 2 * f.counts().size_bytes() + 8);
+    const std::size_t pixels = f.sums().size();
+    out.reserve(24 + header.size() + pixels * (film::bytes_per_pixel + (fade ? fade_file_bytes : 0)) + 8);
     out.append(magic, sizeof magic);
     put(out, format_version);
     put(out, static_cast<std::uint32_t>(header.size()));
@@ -121,6 +130,16 @@ void write_checkpoint(const std::filesystem::path& path, const checkpoint& c) {
     put_all(out, f.sums());
     put_all(out, f.counts());
     put_all(out, f.dropped_counts());
+    if (fade) {
+        put_all(out, std::span<const exact_xyz>(fade->early_sum));
+        put_all(out, std::span<const std::uint32_t>(fade->early_count));
+        for (const auto* side : {&fade->early_sq, &fade->late_sq})
+            for (const auto& pixel : *side)
+                for (const auto& q : pixel) {
+                    put(out, q.low);
+                    put(out, q.high);
+                }
+    }
     put(out, fnv1a(out.data(), out.size()));
     try {
         exr::write_atomically(path, [&](const std::filesystem::path& tmp) {
@@ -151,8 +170,9 @@ checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
     reader r(bytes, name);
 
     if (r.take(sizeof magic, "the magic") != std::string_view(magic, sizeof magic)) r.fail("it does not start with IRISCKPT");
-    if (const auto v = r.get<std::uint32_t>("the format version"); v != format_version)
-        r.fail(fmt::format("format version {}, this iris reads {}", v, format_version));
+    const auto version = r.get<std::uint32_t>("the format version");
+    if (version != 1 && version != format_version)
+        r.fail(fmt::format("format version {}, this iris reads 1 and {}", version, format_version));
     const auto header_length = r.get<std::uint32_t>("the header length");
     if (header_length > (1u << 16)) r.fail(fmt::format("a header of {} bytes", header_length));
     std::map<std::string, std::string> h;
@@ -195,22 +215,44 @@ checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
     c.samples = parse_number<std::uint64_t>(r, h, "samples", 0, UINT64_MAX);
     c.rays = parse_number<std::uint64_t>(r, h, "rays", 0, UINT64_MAX);
     c.seconds = parse_number<double>(r, h, "seconds", 0.0, 1e12);
+    const auto fade_split = version == 1 ? 0u : parse_number<std::uint32_t>(r, h, "fade_split", 0, UINT32_MAX);
 
     const std::size_t pixels = static_cast<std::size_t>(c.key.width) * static_cast<std::size_t>(c.key.height);
-    const std::size_t expected = r.position() + pixels * (sizeof(exact_xyz) + 2 * sizeof(std::uint32_t)) + 8;
+    const std::size_t per_pixel = film::bytes_per_pixel + (fade_split > 0 ? fade_file_bytes : 0);
+    const std::size_t expected = r.position() + pixels * per_pixel + 8;
     if (bytes.size() != expected)
         r.fail(fmt::format("{} bytes, a {}x{} checkpoint has {}", bytes.size(), c.key.width, c.key.height, expected));
     auto sums = r.get_all<exact_xyz>(pixels, "the sums");
     auto counts = r.get_all<std::uint32_t>(pixels, "the sample counts");
     auto dropped = r.get_all<std::uint32_t>(pixels, "the dropped counts");
+    std::optional<film::fade_parts> fade;
+    if (fade_split > 0) {
+        fade.emplace();
+        fade->split = fade_split;
+        fade->early_sum = r.get_all<exact_xyz>(pixels, "the fade layer's early sums");
+        fade->early_count = r.get_all<std::uint32_t>(pixels, "the fade layer's early counts");
+        for (auto* side : {&fade->early_sq, &fade->late_sq}) {
+            side->resize(pixels);
+            for (auto& pixel : *side)
+                for (auto& q : pixel) {
+                    q.low = r.get<fade::exact_uint>("the fade layer's squares");
+                    q.high = r.get<std::uint64_t>("the fade layer's squares");
+                }
+        }
+    }
     const std::size_t body = r.position();
     if (r.get<std::uint64_t>("the checksum") != fnv1a(bytes.data(), body)) r.fail("checksum mismatch");
     for (std::size_t i = 0; i < pixels; ++i) {
         if (counts[i] != static_cast<std::uint32_t>(c.spp_done))
             r.fail(fmt::format("pixel {} has {} samples, spp_done is {}", i, counts[i], c.spp_done));
         if (dropped[i] > counts[i]) r.fail(fmt::format("pixel {} has more dropped samples than samples", i));
+        // every pixel took samples 0 .. spp_done − 1, so min(spp_done, split) of them early
+        if (fade && fade->early_count[i] != std::min(counts[i], fade_split))
+            r.fail(fmt::format("pixel {} has {} early samples in the fade layer, {} with spp_done {} and fade_split {}", i,
+                               fade->early_count[i], std::min(counts[i], fade_split), c.spp_done, fade_split));
     }
-    c.image = film::from_parts(c.key.width, c.key.height, std::move(sums), std::move(counts), std::move(dropped));
+    c.image = film::from_parts(c.key.width, c.key.height, std::move(sums), std::move(counts), std::move(dropped),
+                               std::move(fade));
     return c;
 }
 

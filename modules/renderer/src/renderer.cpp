@@ -106,10 +106,19 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
         throw std::invalid_argument(fmt::format("the film to resume is {}x{}, the render {}x{}", out.width(), out.height(), w, ht));
     const bool fades = opt.estimator != "bsdf-only" &&
                        dispatch_preset(opt.preset, []<class P>() { return P::accumulation_type::fades; });
-    if (fades && (opt.start_spp > 0 || opt.ranks > 1))
-        throw std::invalid_argument(fmt::format("preset '{}' fades its early samples out, and its film's fade layer is not in "
-                                                "checkpoints or exchanged between ranks yet: it cannot {}",
-                                                opt.preset, opt.start_spp > 0 ? "resume" : "run over several ranks"));
+    if (opt.start_spp > 0) {
+        // the film to go on from: a fading preset's has (or, still empty — another rank's
+        // share of a resumed render — gets) a fade layer split at N_thold; another's has none
+        bool empty = true;
+        for (std::size_t i = 0; i < out.sums().size(); ++i) empty = empty && out.samples(i) == 0;
+        if (fades && !out.fades() && empty) out.enable_fade(static_cast<std::uint32_t>(opt.nthold));
+        if (fades != out.fades())
+            throw std::invalid_argument(fmt::format("preset '{}' {} a fade layer, the film to resume {}", opt.preset,
+                                                    fades ? "needs" : "has no use for", out.fades() ? "has one" : "has none"));
+        if (fades && out.fade_state()->split != static_cast<std::uint32_t>(opt.nthold))
+            throw std::invalid_argument(fmt::format("the film to resume fades at sample {}, the render's nthold is {}",
+                                                    out.fade_state()->split, opt.nthold));
+    }
     const embree::intersector tracer(scene);
     if (opt.start_spp == 0) try {
         out = film(w, ht);

@@ -33,10 +33,12 @@ public:
     bool active() const noexcept { return m_active; }
 
     /// \brief The exact sum of every rank's film (film::merge), on rank 0; other ranks get
-    /// an empty (0×0) film. The sums travel as 16-byte integers with a user-defined MPI
+    /// an empty (0×0) film. The sums travel as 128-bit integers with a user-defined MPI
     /// operation (integer addition: associative and commutative, so any reduction tree
-    /// gives the same bits), the counts as MPI_UINT32_T with MPI_SUM. Chunks of 2^20
-    /// pixels bound the extra memory. All films must have the same size.
+    /// gives the same bits), the counts as MPI_UINT32_T with MPI_SUM; a fade layer's early
+    /// sums and counts the same way and its sums of squares (192-bit) with another such
+    /// operation. Chunks of 2^20 pixels bound the extra memory. All films must have the
+    /// same size, and all or none a fade layer with the same split.
     film reduce(const film& local) const;
 
     /// \brief The largest of every rank's `value`, on every rank (a flag raised anywhere).

@@ -4,22 +4,28 @@
 /// render it belongs to, so that `render` can go on from it (options::start_spp) to the
 /// same film an uninterrupted render gives.
 ///
-/// **File format** (version 1; host byte order, little-endian on every machine iris builds
+/// **File format** (version 2; host byte order, little-endian on every machine iris builds
 /// for, and checked by the magic):
 ///
 /// | bytes | what |
 /// |---|---|
 /// | 8 | magic `IRISCKPT` |
-/// | 4 | format version (uint32, 1) |
+/// | 4 | format version (uint32, 2) |
 /// | 4 | header length L (uint32) |
-/// | L | header: `key=value` lines (the key's fields, then spp_done, samples, rays, seconds) |
+/// | L | header: `key=value` lines (the key's fields, then spp_done, samples, rays, seconds, fade_split) |
 /// | 48·P | per pixel (P = width·height, row-major): X, Y, Z sums as 128-bit fixed point (film.hpp) |
 /// | 4·P | per pixel: samples (uint32) |
 /// | 4·P | per pixel: dropped samples (uint32) |
+/// | | only if fade_split > 0 (a fading preset's film: its fade layer, film.hpp): |
+/// | 48·P | per pixel: the early samples' X, Y, Z sums |
+/// | 4·P | per pixel: early samples (uint32) |
+/// | 144·P | per pixel, early then late side, X, Y, Z: sums of squares (fade.hpp), 16 bytes low part then 8 bytes high |
 /// | 8 | FNV-1a (64 bit) of every byte before it |
 ///
-/// A reader checks everything it can: the magic and version, every header field, the exact
-/// length, the checksum, and that every pixel holds spp_done samples. It is written
+/// Version 1 (written before the fade layer) is the same without fade_split and is still
+/// read. A reader checks everything it can: the magic and version, every header field, the
+/// exact length, the checksum, that every pixel holds spp_done samples and, with a fade
+/// layer, min(spp_done, fade_split) early ones. It is written
 /// atomically (a temporary file, then rename), so a crash at any moment leaves either the
 /// previous checkpoint or the new one.
 
