@@ -172,6 +172,19 @@ MUTATIONS = [
     ("fade-split-off-by-one",
      [("include/iris/render/film.hpp", "            const bool early = sample < split;", "            const bool early = sample <= split;")],
      ["render_test"], "Fade"),
+    # the fade layer in checkpoints and the ranks' reduction (checked by hand 2026-12-04: CAUGHT)
+    ("checkpoint-without-the-fade-layer",
+     [("modules/renderer/src/checkpoint.cpp", "    const film::fade_parts* fade = f.fade_state();",
+       "    const film::fade_parts* fade = nullptr;")],
+     ["checkpoint_test", "iris-render"], "CheckpointFile|apps.render.resume"),
+    ("mpi-reduce-drops-the-fade-layer",
+     [("modules/mpi/src/mpi.cpp", "    if (const film::fade_parts* l = local.fade_state()) {",
+       "    if (const film::fade_parts* l = nullptr) {")],
+     ["iris-render"], "apps.render.mpi"),
+    ("bias-variance-divides-by-k",
+     [("include/iris/metrics/bias_variance.hpp", "            const double s2 = ss / (k - 1);",
+       "            const double s2 = ss / k;")],
+     ["metrics_test"], "BiasVariance"),
 ]
 
 

@@ -6,7 +6,7 @@
 
 namespace iris::app {
 
-/// \brief `diff`, `convert`, `crop`, `error-map`, `info`: compare and convert EXR images.
+/// \brief `diff`, `bias`, `convert`, `crop`, `error-map`, `info`: compare and convert EXR images.
 void add_image_commands(CLI::App& app);
 
 }  // namespace iris::app

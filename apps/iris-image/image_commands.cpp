@@ -108,6 +108,29 @@ void diff(const std::string& image_path, const std::string& reference_path, bool
     }
 }
 
+// ---- bias -----------------------------------------------------------------------------
+
+void bias(const std::vector<std::string>& run_paths, const std::string& reference_path, bool json) {
+    if (run_paths.size() < 2)
+        throw usage_error(fmt::format("bias needs at least 2 runs (renders with other seeds), got {}", run_paths.size()));
+    const exr::loaded ref = load(reference_path);
+    std::vector<image> runs;
+    for (const auto& path : run_paths) {
+        exr::loaded r = load(path);
+        if (r.pixels.width() != ref.pixels.width() || r.pixels.height() != ref.pixels.height())
+            throw usage_error(fmt::format("'{}' is {} but '{}' is {}: the images must have the same size", path,
+                                          size_of(r.pixels), reference_path, size_of(ref.pixels)));
+        runs.push_back(std::move(r.pixels));
+    }
+    const bias_variance_split b = bias_variance(runs, ref.pixels);
+    if (json)
+        fmt::print("{{\"runs\": {}, \"mse\": {}, \"variance\": {}, \"bias_sq\": {}, \"bias_sq_se\": {}}}\n", b.runs, b.mse,
+                   b.variance, b.bias_sq, b.bias_sq_se);
+    else
+        fmt::print("runs={} mse={:.6g} variance={:.6g} bias_sq={:.6g} bias_sq_se={:.3g}\n", b.runs, b.mse, b.variance,
+                   b.bias_sq, b.bias_sq_se);
+}
+
 // ---- convert --------------------------------------------------------------------------
 
 void convert(const std::string& in, const std::string& out, const std::string& exposure_text) {
@@ -232,6 +255,14 @@ void add_image_commands(CLI::App& app) {
     diff_cmd->add_option("REFERENCE", o->reference, "reference EXR (relmse divides by it)")->required();
     diff_cmd->add_flag("--json", o->json, "print one JSON object (keys mse relmse ssim max_abs pixels width height)");
     diff_cmd->callback([o] { diff(o->image, o->reference, o->json); });
+
+    auto runs = std::make_shared<std::vector<std::string>>();
+    auto* bias_cmd = app.add_subcommand("bias", "Split the MSE of independent runs (2 or more seeds) against "
+                                                "REFERENCE into variance and squared bias (docs/metrics.md)");
+    bias_cmd->add_option("RUNS", *runs, "EXRs of the same render with other seeds")->required();
+    bias_cmd->add_option("-r,--reference", o->reference, "reference EXR")->required();
+    bias_cmd->add_flag("--json", o->json, "print one JSON object (keys runs mse variance bias_sq bias_sq_se)");
+    bias_cmd->callback([o, runs] { bias(*runs, o->reference, o->json); });
 
     auto* convert_cmd = app.add_subcommand("convert", "Write an 8-bit sRGB PNG of an EXR");
     convert_cmd->add_option("IMAGE", o->image, "input EXR")->required();

@@ -5,6 +5,10 @@
 //       Gaussian window; "nan"/null below 11×11), max_abs and the pixel count, as one line
 //       `mse=… relmse=… ssim=… max_abs=… pixels=…`, or with --json as a JSON object with
 //       those keys plus width and height. Definitions: docs/metrics.md.
+//   iris-image bias RUN RUN... --reference REFERENCE [--json]
+//       the MSE of independent runs (the same render, other seeds) against REFERENCE split
+//       into the runs' variance and the squared bias (with the reference's own error), and
+//       the bias's standard error: `runs=… mse=… variance=… bias_sq=… bias_sq_se=…`.
 //   iris-image convert IMAGE -o OUT.png [--exposure E]
 //       8-bit sRGB PNG of IMAGE scaled by 2^E (E in stops; default 0).
 //   iris-image crop IMAGE --rect X,Y,W,H -o OUT.exr

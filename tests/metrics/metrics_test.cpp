@@ -350,3 +350,59 @@ TEST(Compare, BundlesTheIndividualMetrics) {
 }
 
 }  // namespace
+
+// ---- bias_variance ----------------------------------------------------------------------
+
+namespace {
+
+// Exact by construction (every value a multiple of 2^-3): two runs at ±0.25 around the
+// reference have no bias and variance 2 · 0.25² = 0.125, so bias_sq = 0 − 0.125 / 2; two
+// equal runs 0.25 off have no variance and bias_sq = mse = 0.0625.
+TEST(BiasVariance, HandComputedRuns) {
+    const image ref = constant_image(16, 12, {0.5f, 0.5f, 0.5f});
+    const std::vector<image> spread{constant_image(16, 12, {0.75f, 0.75f, 0.75f}), constant_image(16, 12, {0.25f, 0.25f, 0.25f})};
+    const auto a = iris::bias_variance(spread, ref);
+    EXPECT_EQ(a.runs, 2u);
+    EXPECT_EQ(a.mse, 0.0625);
+    EXPECT_EQ(a.variance, 0.125);
+    EXPECT_EQ(a.bias_sq, -0.0625);
+    EXPECT_EQ(a.bias_sq_se, 0.0);
+    const std::vector<image> offset{constant_image(16, 12, {0.75f, 0.75f, 0.75f}), constant_image(16, 12, {0.75f, 0.75f, 0.75f})};
+    const auto b = iris::bias_variance(offset, ref);
+    EXPECT_EQ(b.variance, 0.0);
+    EXPECT_EQ(b.bias_sq, 0.0625);
+    EXPECT_EQ(b.mse, 0.0625);
+}
+
+// Statistical, fixed seeds: 4 runs = reference + β + uniform noise of half-width 0.3
+// (variance 0.03) on 120 × 100 pixels. bias_sq must be within 4 of its own standard errors
+// of β² (two-sided, 99.994 % under normality; 3·12000 values) for β = 0 and β = 0.05, and
+// variance within 2 % of 0.03 (its standard error here is ~0.4 %). Would catch the
+// variance divided by k instead of k − 1 (bias_sq off by 0.03 / 16 ≈ 0.0019, ~30 standard
+// errors) or the s²/k correction left out (off by 0.0075).
+TEST(BiasVariance, RecoversAKnownBiasFromNoisyRuns) {
+    const image ref = random_image(120, 100, 11, 0.5f, 1.5f);
+    for (float beta : {0.0f, 0.05f}) {
+        SCOPED_TRACE(beta);
+        std::vector<image> runs;
+        for (std::uint32_t s = 0; s < 4; ++s) {
+            image r = add_noise(ref, 0.3f, 100 + s);
+            for (auto& p : r.pixels()) p = {p.r + beta, p.g + beta, p.b + beta};
+            runs.push_back(std::move(r));
+        }
+        const auto bv = iris::bias_variance(runs, ref);
+        EXPECT_NEAR(bv.bias_sq, double(beta) * beta, 4 * bv.bias_sq_se) << "se " << bv.bias_sq_se;
+        EXPECT_LT(bv.bias_sq_se, 2e-4);
+        EXPECT_NEAR(bv.variance, 0.03, 0.02 * 0.03);
+        EXPECT_NEAR(bv.mse, bv.variance + bv.bias_sq, 1e-12);
+    }
+}
+
+TEST(BiasVariance, NeedsTwoRunsOfTheReferencesSize) {
+    const image ref = constant_image(8, 8, {0.5f, 0.5f, 0.5f});
+    const std::vector<image> one{ref}, mixed{ref, constant_image(8, 9, {0.5f, 0.5f, 0.5f})};
+    EXPECT_NE(message_of([&] { (void)iris::bias_variance(one, ref); }).find("at least 2 runs"), std::string::npos);
+    EXPECT_NE(message_of([&] { (void)iris::bias_variance(mixed, ref); }).find("8x9"), std::string::npos);
+}
+
+}  // namespace

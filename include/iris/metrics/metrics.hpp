@@ -1,13 +1,15 @@
 #pragma once
 /// \file
 /// \brief All image metrics (MSE, relMSE, SSIM, max |a − b|) and `compare`, which computes
-/// them together for a test image against a reference. Definitions: docs/metrics.md.
+/// them together for a test image against a reference; `bias_variance` splits the MSE of
+/// several runs into variance and squared bias. Definitions: docs/metrics.md.
 
 #include <cmath>
 #include <cstddef>
 #include <limits>
 
 #include "iris/image.hpp"
+#include "iris/metrics/bias_variance.hpp"
 #include "iris/metrics/common.hpp"
 #include "iris/metrics/mse.hpp"
 #include "iris/metrics/ssim.hpp"
