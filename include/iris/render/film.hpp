@@ -121,39 +121,63 @@ public:
     /// \brief The fade's blend of every pixel (fade.hpp), row-major: each pixel's weight from
     /// the sums over its (2·radius + 1)² neighbourhood clipped to the image (pixels with fewer
     /// than 2 samples on a side left out); the running mean where the pixel itself has fewer
-    /// than 2 samples on a side. Only with the fade layer.
+    /// than 2 samples on a side. Only with the fade layer. Works through the film row by row,
+    /// keeping the statistics of the 2·radius + 1 rows a neighbourhood spans: O(width)
+    /// memory beside the result (`to_image` writes straight into the image). Cost:
+    /// bench/fade_bench.cpp.
     std::vector<xyz> faded(int radius = fade_radius) const {
-        const std::size_t n = m_sum.size();
-        std::vector<std::array<std::pair<fade::side, fade::side>, 3>> sides(n);
-        std::vector<fade::weight_sums> own(n);
-        const auto usable = [&](std::size_t i) { return sides[i][0].first.n >= 2 && sides[i][0].second.n >= 2; };
-        for (std::size_t i = 0; i < n; ++i) {
-            sides[i] = fade_sides(i);
-            if (usable(i))
-                for (const auto& [early, late] : sides[i]) own[i].add(early, late);
-        }
-        std::vector<xyz> out(n);
-        for (int y = 0; y < m_height; ++y)
+        std::vector<xyz> out(m_sum.size());
+        for_each_faded(radius, [&](std::size_t i, const xyz& v) { out[i] = v; });
+        return out;
+    }
+    /// \brief `faded`'s values, handed to `f(i, value)` pixel by pixel (row-major) instead of
+    /// stored.
+    template <class F>
+    void for_each_faded(int radius, F&& f) const {
+        const std::size_t w = static_cast<std::size_t>(m_width);
+        const int rows = 2 * radius + 1;
+        struct pixel_stats {
+            std::array<std::pair<fade::side, fade::side>, 3> sides;
+            fade::weight_sums own;  // zero unless usable
+            bool usable = false;
+        };
+        std::vector<pixel_stats> ring(static_cast<std::size_t>(rows) * w);
+        const auto slot = [&](int y) { return static_cast<std::size_t>(y % rows) * w; };
+        const auto load_row = [&](int y) {
+            for (std::size_t x = 0; x < w; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * w + x;
+                pixel_stats& p = ring[slot(y) + x];
+                p.sides = fade_sides(i);
+                p.usable = p.sides[0].first.n >= 2 && p.sides[0].second.n >= 2;
+                p.own = {};
+                if (p.usable)
+                    for (const auto& [early, late] : p.sides) p.own.add(early, late);
+            }
+        };
+        for (int y = 0; y < std::min(radius, m_height); ++y) load_row(y);
+        for (int y = 0; y < m_height; ++y) {
+            if (y + radius < m_height) load_row(y + radius);
             for (int x = 0; x < m_width; ++x) {
-                const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x);
-                if (!usable(i)) {
-                    out[i] = mean(i);
+                const std::size_t i = static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
+                const pixel_stats& p = ring[slot(y) + static_cast<std::size_t>(x)];
+                if (!p.usable) {
+                    f(i, mean(i));
                     continue;
                 }
                 fade::weight_sums sums;
                 for (int yy = std::max(0, y - radius); yy <= std::min(m_height - 1, y + radius); ++yy)
                     for (int xx = std::max(0, x - radius); xx <= std::min(m_width - 1, x + radius); ++xx) {
-                        const auto& o = own[static_cast<std::size_t>(yy) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(xx)];
+                        const auto& o = ring[slot(yy) + static_cast<std::size_t>(xx)].own;
                         sums.var_late += o.var_late;
                         sums.var_both += o.var_both;
                         sums.diff_sq += o.diff_sq;
                     }
-                const double nb = sides[i][0].first.n, nu = sides[i][0].second.n;
-                const double w = fade::weight(sums, nb / (nb + nu));
-                const auto blend = [&](std::size_t c) { return w * sides[i][c].first.mean + (1 - w) * sides[i][c].second.mean; };
-                out[i] = {blend(0), blend(1), blend(2)};
+                const double nb = p.sides[0].first.n, nu = p.sides[0].second.n;
+                const double wt = fade::weight(sums, nb / (nb + nu));
+                const auto blend = [&](std::size_t c) { return wt * p.sides[c].first.mean + (1 - wt) * p.sides[c].second.mean; };
+                f(i, xyz{blend(0), blend(1), blend(2)});
             }
-        return out;
+        }
     }
     /// \brief The neighbourhood radius of the fade's weights: 5 × 5 pixels.
     static constexpr int fade_radius = 2;
@@ -275,11 +299,14 @@ public:
     /// \brief The image as linear sRGB: the running mean, or with the fade layer the fade's blend.
     image to_image() const {
         image img(m_width, m_height);
-        const std::vector<xyz> blend = m_fade ? faded() : std::vector<xyz>{};
-        for (std::size_t i = 0; i < m_sum.size(); ++i) {
-            const rgb c = xyz_to_linear_srgb(m_fade ? blend[i] : mean(i));
+        const auto put = [&](std::size_t i, const xyz& v) {
+            const rgb c = xyz_to_linear_srgb(v);
             img.pixels()[i] = {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
-        }
+        };
+        if (m_fade)
+            for_each_faded(fade_radius, put);
+        else
+            for (std::size_t i = 0; i < m_sum.size(); ++i) put(i, mean(i));
         return img;
     }
 
