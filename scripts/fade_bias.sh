@@ -22,7 +22,7 @@ out=docs/results/fade/bias.md
   for scene_dir in "$dir"/*/; do
     scene=$(basename "$scene_dir")
     [ -d "$scene_dir/snapshots" ] || continue
-    ref=$(ls "$dir"/cache/"$scene"-????????????????-160x120-ref16384-*.exr 2>/dev/null | head -1)
+    ref=$(ls "$dir"/cache/"$scene"-????????????????-160x120-ref16384-*.exr 2>/dev/null | head -1 || true)
     [ -n "$ref" ] || { echo "no reference for $scene" >&2; continue; }
     echo
     echo "## $scene"

@@ -9,7 +9,7 @@ import os
 import re
 import sys
 
-SCENES = ["falling-cubes", "falling-cubes-led", "rubik", "falling-cubes-rgb", "falling-cubes-laser"]
+SCENES = ["falling-cubes", "falling-cubes-led", "rubik", "falling-cubes-rgb", "falling-cubes-laser", "prism", "cornell"]
 PRESETS = ["paper", "paper-fade", "paper-auto-fade"]
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "results", "fade")
 spps = [int(s) for s in (sys.argv[1] if len(sys.argv) > 1 else "16,512,1024,2048,4096").split(",")]

@@ -16,7 +16,8 @@ ref_spp=${REF_SPP:-16384}
 threads=${THREADS:-0}
 spp=${SPP:-16,32,64,128,256,512,1024,2048,4096}
 mkdir -p "$out"
-for scene in falling-cubes falling-cubes-led rubik falling-cubes-rgb falling-cubes-laser; do
+# SCENES="prism cornell" for the other two built-ins with glass (the second run in results.md)
+for scene in ${SCENES:-falling-cubes falling-cubes-led rubik falling-cubes-rgb falling-cubes-laser}; do
   presets=hwss,paper,paper-fade
   case "$scene" in falling-cubes-rgb|falling-cubes-laser) presets+=,paper-auto-fade ;; esac
   "$ablate" "$scene" --presets "$presets" --nthold 512 --spp "$spp" --reference-spp "$ref_spp" \
