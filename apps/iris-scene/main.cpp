@@ -25,6 +25,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include <iris/render/lights/point.hpp>
 #include <iris/scene/scene.hpp>
 #include <iris/spectrum/color.hpp>
 #include <iris/version.hpp>
@@ -74,6 +75,33 @@ std::string material_summary(const iris::material_desc& m) {
     return std::visit(summary{}, m);
 }
 
+std::string light_summary(const iris::light_desc& l) {
+    struct summary {  // one call per alternative: a new light does not compile without its own
+        std::string operator()(const iris::light::point& p) const {
+            return fmt::format("point position=[{:g}, {:g}, {:g}]", p.position.x, p.position.y, p.position.z);
+        }
+        std::string operator()(const iris::light::spot& p) const {
+            return fmt::format("spot position=[{:g}, {:g}, {:g}] direction=[{:.4g}, {:.4g}, {:.4g}] cone={:.4g} "
+                               "falloff={:.4g} degrees",
+                               p.position.x, p.position.y, p.position.z, p.direction.x, p.direction.y, p.direction.z,
+                               std::acos(p.cos_total_width) * 180.0 / std::numbers::pi,
+                               std::acos(p.cos_falloff_start) * 180.0 / std::numbers::pi);
+        }
+        std::string operator()(const iris::light::distant& p) const {
+            return fmt::format("distant direction=[{:.4g}, {:.4g}, {:.4g}]", p.direction.x, p.direction.y, p.direction.z);
+        }
+    };
+    return std::visit(summary{}, l);
+}
+
+std::string environment_summary(const iris::scene_desc& s) {
+    if (!s.environment) return "none";
+    if (const auto& m = s.environment->map)
+        return fmt::format("image {} {}x{} {}", m->file, m->width, m->height,
+                           m->mapping == iris::environment_mapping::latlong ? "latlong" : "equal-area");
+    return s.environment->spd_name;
+}
+
 struct emitter_stats {
     double area = 0.0;
     std::size_t shapes = 0;
@@ -101,6 +129,17 @@ std::vector<emitter_stats> emitter_statistics(const iris::scene_desc& s) {
             integral += 0.5 * (l(x) + l(x + step)) * step;
         }
         out[i].power = std::numbers::pi * out[i].area * integral * (s.emitters[i].two_sided ? 2.0 : 1.0);
+        for (const auto& li : s.lights)  // a point or spot light's power is its intensity times its solid angle
+            std::visit(
+                [&](const auto& x) {
+                    using L = std::decay_t<decltype(x)>;
+                    if constexpr (!std::is_same_v<L, iris::light::distant>)
+                        if (x.emitter == i)
+                            out[i].power = std::numbers::pi *
+                                           static_cast<double>(iris::lights::point_light::from(x).solid_angle_over_pi()) *
+                                           integral;
+                },
+                li);
     }
     return out;
 }
@@ -148,7 +187,9 @@ void info(const std::string& name, bool json) {
                                          {"area", es[i].area},
                                          {"shapes", es[i].shapes},
                                          {"two_sided", s.emitters[i].two_sided}});
-        j["environment"] = s.environment ? nlohmann::ordered_json(s.environment->spd_name) : nlohmann::ordered_json();
+        j["environment"] = s.environment ? nlohmann::ordered_json(environment_summary(s)) : nlohmann::ordered_json();
+        j["lights"] = nlohmann::ordered_json::array();
+        for (const auto& li : s.lights) j["lights"].push_back(light_summary(li));
         j["bounds"] = {{"min", {b.lo.x, b.lo.y, b.lo.z}}, {"max", {b.hi.x, b.hi.y, b.hi.z}}};
         j["camera"] = {{"position", {s.camera.position.x, s.camera.position.y, s.camera.position.z}},
                        {"look_at", {s.camera.look_at.x, s.camera.look_at.y, s.camera.look_at.z}},
@@ -159,6 +200,8 @@ void info(const std::string& name, bool json) {
         j["dispersive_rough"] = f.dispersive_rough;
         j["has_specular"] = f.has_specular;
         j["has_environment"] = f.has_environment;
+        j["has_environment_map"] = f.has_environment_map;
+        j["has_delta_lights"] = f.has_delta_lights;
         j["emitter_spds"] = f.emitter_spds;
         j["load_seconds"] = l.seconds;
         fmt::print("{}\n", j.dump(2));
@@ -176,7 +219,9 @@ void info(const std::string& name, bool json) {
         fmt::print("  {:<14} {} luminance={:g} power={:g} area={:g} shapes={}{}\n", l.doc.emitters[i].name,
                    s.emitters[i].spd_name, es[i].luminance, es[i].power, es[i].area, es[i].shapes,
                    s.emitters[i].two_sided ? " two-sided" : "");
-    fmt::print("environment  {}\n", s.environment ? s.environment->spd_name : std::string("none"));
+    fmt::print("lights       {}\n", s.lights.size());
+    for (const auto& li : s.lights) fmt::print("  {}\n", light_summary(li));
+    fmt::print("environment  {}\n", environment_summary(s));
     fmt::print("bounds       [{:g}, {:g}, {:g}] - [{:g}, {:g}, {:g}]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
     fmt::print("camera       {}x{} fov={:g} position=[{:g}, {:g}, {:g}] look_at=[{:g}, {:g}, {:g}]\n", s.camera.width,
                s.camera.height, s.camera.fov_y_degrees, s.camera.position.x, s.camera.position.y, s.camera.position.z,
@@ -185,8 +230,9 @@ void info(const std::string& name, bool json) {
     std::string spds;
     for (const auto& n : f.emitter_spds) spds += (spds.empty() ? "" : ",") + n;
     fmt::print("features     dispersive_specular={} dispersive_rough={} has_specular={} has_environment={} "
-               "emitter_spds={}\n",
-               f.dispersive_specular, f.dispersive_rough, f.has_specular, f.has_environment, spds);
+               "has_environment_map={} has_delta_lights={} emitter_spds={}\n",
+               f.dispersive_specular, f.dispersive_rough, f.has_specular, f.has_environment, f.has_environment_map,
+               f.has_delta_lights, spds);
     fmt::print("load         {:.2f} ms\n", l.seconds * 1e3);
 }
 

@@ -31,6 +31,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "iris/render/lights/light.hpp"
 #include "iris/render/materials/materials.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/sampling/bias/bin_layout.hpp"
@@ -252,13 +253,40 @@ private:
     std::vector<float> m_values;
 };
 
+/// \brief The emission tables of a scene, in the order `emission_ref` indexes them
+/// (iris/render/lights/light.hpp): one per emitter, then the environment's — its radiance,
+/// or the three basis spectra of an environment image.
+inline std::vector<const tabulated_spectrum*> emission_spectra(const scene_desc& scene) {
+    std::vector<const tabulated_spectrum*> out;
+    for (const emitter_desc& e : scene.emitters) out.push_back(&e.radiance);
+    if (scene.environment) {
+        if (scene.environment->map)
+            for (const auto& b : scene.environment->basis) out.push_back(&b);
+        else
+            out.push_back(&scene.environment->radiance);
+    }
+    return out;
+}
+
 /// \brief The spectra the hero wavelengths read at every vertex, as `lattice_spectrum`s:
-/// per material its reflectance (if its BxDF `reads_albedo`; none otherwise), per emitter its
-/// radiance, and the environment.
+/// per material its reflectance (if its BxDF `reads_albedo`; none otherwise), and the
+/// emission tables (`emission_spectra`).
 struct hero_tables {
     std::vector<lattice_spectrum> albedo;
     std::vector<lattice_spectrum> emission;
-    lattice_spectrum environment;
+
+    /// \brief Le(λ_k) = Σ_i weight_i · table_{first+i}(λ_k) (an emitter: its table times 1, exactly).
+    template <std::size_t N>
+    sampled_spectrum<N> emitted(const emission_ref& r, const sampled_wavelengths<N>& wl) const noexcept {
+        sampled_spectrum<N> v = emission[r.first](wl);
+        if (r.count == 1) {
+            if (r.weight[0] != 1.0f) v *= r.weight[0];
+            return v;
+        }
+        v *= r.weight[0];
+        for (std::uint32_t i = 1; i < r.count; ++i) v += emission[r.first + i](wl) * r.weight[static_cast<int>(i)];
+        return v;
+    }
 
     hero_tables() = default;
     explicit hero_tables(const scene_desc& scene) {
@@ -268,14 +296,13 @@ struct hero_tables {
                 if constexpr (std::remove_cvref_t<decltype(b)>::reads_albedo) albedo.emplace_back(b.reflectance(), lo, hi);
                 else albedo.emplace_back();
             });
-        for (const emitter_desc& e : scene.emitters) emission.emplace_back(e.radiance, lo, hi);
-        if (scene.environment) environment = lattice_spectrum(scene.environment->radiance, lo, hi);
+        for (const tabulated_spectrum* e : emission_spectra(scene)) emission.emplace_back(*e, lo, hi);
     }
 };
 
 /// \brief Every spectrum the B term reads, made once per render: per material its
 /// reflectance or its index of refraction (as its BxDF `reads_albedo` or `reads_eta`), per emitter its
-/// radiance, the environment, and the CIE 1931 matching functions (their 1 nm tables).
+/// emission tables (`emission_spectra`), and the CIE 1931 matching functions (their 1 nm tables).
 template <std::size_t Bins>
 struct bin_tables {
     using spectrum = binned_spectrum<Bins>;
@@ -285,8 +312,7 @@ struct bin_tables {
     std::vector<spectrum> eta;     ///< per material; empty unless its BxDF reads_eta
     std::vector<spectrum> eta2;     ///< η², likewise (Fresnel at the bins reads η² and 1/η², no squaring or division)
     std::vector<spectrum> inv_eta2; ///< 1/η², likewise
-    std::vector<spectrum> emission;
-    spectrum environment;
+    std::vector<spectrum> emission;  ///< indexed as `emission_ref` indexes them
     spectrum x_bar, y_bar, z_bar;
 
     bin_tables() = default;
@@ -311,8 +337,7 @@ struct bin_tables {
                     inv_eta2.emplace_back();
                 }
             });
-        for (const emitter_desc& e : scene.emitters) emission.emplace_back(lattice, e.radiance);
-        if (scene.environment) environment = spectrum(lattice, scene.environment->radiance);
+        for (const tabulated_spectrum* e : emission_spectra(scene)) emission.emplace_back(lattice, *e);
     }
 };
 

@@ -15,8 +15,13 @@
 /// its rays start on the surface and skip the triangle they leave (`intersect_leaving`). Everything next-event estimation adds —
 /// light choice, area pdfs, shadow rays, the two-strategy and C-wavelength MIS weights —
 /// is absent, so an error in any of it shows as a disagreement between the two estimators.
-/// It is unbiased for every scene, dispersive ones included (one wavelength, so a
-/// λ-dependent refraction needs no termination), but small lamps make it noisy.
+/// It is unbiased for every scene without delta lights, dispersive ones included (one
+/// wavelength, so a λ-dependent refraction needs no termination), but small lamps make it
+/// noisy. Point, spot and distant lights cannot be hit by a ray: it does not see them
+/// (`scene_features::has_delta_lights`; their checks are closed forms,
+/// tests/renderer/light_render_test.cpp). An environment image is looked up where a path
+/// escapes, with the same bilinear lookup as the lights' (`lights::environment_light::emission`,
+/// which is the image's definition, not a sampling routine).
 
 #include <cmath>
 #include <cstdint>
@@ -30,6 +35,7 @@
 #include "iris/render/frame.hpp"
 #include "iris/render/integrator.hpp"
 #include "iris/render/intersector.hpp"
+#include "iris/render/lights/environment.hpp"
 #include "iris/render/random.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/spectrum/color.hpp"
@@ -41,8 +47,10 @@ class bsdf_only_integrator {
 public:
     static constexpr std::size_t C = 1;
 
-    explicit bsdf_only_integrator(const scene_desc& scene, path_settings settings = {}) noexcept
-        : m_scene(scene), m_settings(settings) {}
+    explicit bsdf_only_integrator(const scene_desc& scene, path_settings settings = {})
+        : m_scene(scene), m_settings(settings) {
+        if (scene.environment) m_environment = lights::environment_light(*scene.environment, 0);
+    }
 
     /// \brief One path from `origin` along unit `dir`. The distribution and α of the
     /// renderer's loop are ignored (this estimator has no wavelength policy).
@@ -61,7 +69,7 @@ public:
         for (int depth = 0;; ++depth) {
             const auto hit = intersect_leaving(tracer, origin, dir, from_shape, from_prim, out.rays);
             if (!hit) {
-                if (m_scene.environment) radiance += static_cast<double>(beta) * m_scene.environment->radiance(lambda);
+                if (m_scene.environment) radiance += static_cast<double>(beta) * environment(dir, lambda);
                 break;
             }
             const shape_desc& shape = m_scene.shapes[hit->shape];
@@ -106,6 +114,16 @@ public:
 private:
     static constexpr std::uint32_t no_triangle = 0xffffffffu;
 
+    /// \brief L(λ) arriving along unit `dir` from the environment.
+    double environment(const glm::vec3& dir, float lambda) const noexcept {
+        const environment_desc& env = *m_scene.environment;
+        if (!env.map) return env.radiance(lambda);
+        const emission_ref le = m_environment.emission(dir);
+        double v = 0.0;
+        for (std::size_t i = 0; i < 3; ++i) v += static_cast<double>(le.weight[static_cast<int>(i)]) * env.basis[i](lambda);
+        return v;
+    }
+
     /// \brief The first hit along the ray other than the (flat) triangle it leaves. Rays
     /// start on the surface itself, not offset from it: a ray leaving a plane cannot meet it
     /// again, so any hit on that triangle is the start point re-found (at t ≈ 0, on either
@@ -134,6 +152,7 @@ private:
 
     const scene_desc& m_scene;
     path_settings m_settings;
+    lights::environment_light m_environment;  ///< the image's lookup (no sampling is used)
 };
 
 }  // namespace iris

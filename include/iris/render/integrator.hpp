@@ -108,10 +108,7 @@ public:
             const auto hit = tracer.intersect(origin, dir, std::numeric_limits<float>::infinity());
             ++out.rays;
             if (!hit) {
-                if (m_scene.environment) {  // not light-sampled: BSDF sampling is its only strategy
-                    hp.lc += hp.beta * m_hero.environment(wl) / hwss_ratio_sum(hp.rho);
-                    bterm.environment();
-                }
+                if (m_lights.has_environment()) collect_environment(dir, wl, hp, bterm);
                 break;
             }
             const shape_desc& shape = m_scene.shapes[hit->shape];
@@ -206,6 +203,24 @@ private:
         }
     };
 
+    /// \brief The environment found by a ray escaping along unit `dir` (BSDF sampling, or
+    /// seen directly), MIS-weighted against light sampling unless the last scattering was delta.
+    template <class Prop>
+    void collect_environment(const glm::vec3& dir, const sampled_wavelengths<C>& wl, hero_path& hp,
+                             Prop& bterm) const noexcept {
+        const emission_ref le = m_lights.environment_emission(dir);
+        float denom, w_hero = 1.0f;
+        const float pl = hp.prev_delta ? 0.0f : m_lights.pdf_environment(dir);
+        if (pl > 0.0f) {
+            denom = hwss_emission_ratio_sum(hp.rho, hp.rho_before, pl, hp.prev_pdf);
+            w_hero = balance_heuristic(hp.prev_pdf, pl);
+        } else {
+            denom = hwss_ratio_sum(hp.rho);
+        }
+        hp.lc += hp.beta * m_hero.emitted(le, wl) / denom;
+        bterm.emission(le, w_hero);
+    }
+
     /// \brief Emission found by BSDF sampling (or seen directly), MIS-weighted against light
     /// sampling unless the last scattering was delta.
     template <class Prop>
@@ -222,13 +237,16 @@ private:
             denom = hwss_emission_ratio_sum(hp.rho, hp.rho_before, pl, hp.prev_pdf);
             w_hero = balance_heuristic(hp.prev_pdf, pl);
         }
-        hp.lc += hp.beta * m_hero.emission[e](wl) / denom;
-        bterm.emission(e, w_hero);
+        const emission_ref le{e, 1, {1.0f, 0.0f, 0.0f}};
+        hp.lc += hp.beta * m_hero.emitted(le, wl) / denom;
+        bterm.emission(le, w_hero);
     }
 
-    /// \brief Next-event estimation at a non-delta vertex: one light point, one shadow ray,
-    /// the balance heuristic over C wavelengths × {BSDF, light} sampling for the hero path
-    /// and the hero's two-strategy weight for the B term.
+    /// \brief Next-event estimation at a non-delta vertex: one light (chosen by power), one
+    /// direction toward it in solid angle, one shadow ray; the balance heuristic over C
+    /// wavelengths × {BSDF, light} sampling for the hero path and the hero's two-strategy
+    /// weight for the B term. A delta light (point, spot, distant) has no BSDF strategy:
+    /// its weight is over the wavelengths alone (p_b = 0 in the same formula).
     template <Intersector Tracer, class B, class Prop>
     void next_event(const Tracer& tracer, const B& bxdf, const vertex& vx, const sampled_wavelengths<C>& wl,
                     const sampled_spectra<C>& hero, hero_path& hp, Prop& bterm, sample_stream& rng,
@@ -236,25 +254,17 @@ private:
         if (m_lights.empty()) return;
         const glm::vec2 u_point = rng.next2();  // slots in the order of random.hpp's layout
         const float u_choice = rng.next();
-        const auto ls = m_lights.sample(u_choice, u_point);
-        if (!ls) return;
-        const glm::vec3 to_light = ls->point.p - vx.sp.p;
-        const float d2 = glm::dot(to_light, to_light);
-        const float d = std::sqrt(d2);
-        const glm::vec3 wi = to_light / d;
-        const float cos_l = -glm::dot(ls->normal, wi);
-        const emitter_desc& em = m_scene.emitters[ls->emitter];
-        if (!(em.two_sided ? cos_l != 0.0f : cos_l > 0.0f) || !(d > 0.0f)) return;
-        const sampled_spectrum<C> f = bxdf.template f_cos<C>(vx.ng, vx.wo, wi, hero);
-        bterm.prepare_light(bxdf, vx.ng, vx.wo, wi);
+        const auto ls = m_lights.sample_li(vx.sp, vx.ng, u_choice, u_point);
+        if (!ls || !(ls->pdf > 0.0f)) return;
+        const sampled_spectrum<C> f = bxdf.template f_cos<C>(vx.ng, vx.wo, ls->wi, hero);
+        bterm.prepare_light(bxdf, vx.ng, vx.wo, ls->wi);
         if (f.is_zero() && !bterm.template receives_light<B>()) return;
         ++out.rays;
-        const shadow_segment sh = shadow_ray_between(vx.sp, vx.ng, ls->point, ls->normal);
-        if (tracer.occluded(sh.origin, sh.direction, sh.t_max)) return;
-        const float pl = ls->pdf_area * d2 / std::fabs(cos_l);
-        const sampled_spectrum<C> pb = bxdf.template pdf<C>(vx.ng, vx.wo, wi, hero);
-        hp.lc += hp.beta * f * m_hero.emission[ls->emitter](wl) / (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
-        bterm.template light<B>(ls->emitter, balance_heuristic(pl, pb[0]), pl);
+        if (tracer.occluded(ls->shadow.origin, ls->shadow.direction, ls->shadow.t_max)) return;
+        const float pl = ls->pdf;
+        const sampled_spectrum<C> pb = ls->delta ? sampled_spectrum<C>{} : bxdf.template pdf<C>(vx.ng, vx.wo, ls->wi, hero);
+        hp.lc += hp.beta * f * m_hero.emitted(ls->le, wl) / (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
+        bterm.template light<B>(ls->le, balance_heuristic(pl, pb[0]), pl);
     }
 
     /// \brief Russian roulette on the largest remaining weight (same for every λ: MIS ratios

@@ -7,9 +7,9 @@
 /// | step | when | what B does |
 /// |---|---|---|
 /// | `start(dist, u)` | first, while α < 1 | jitter the bins, throughput t_b = 1 − r_α(λ_b) |
-/// | `emission(e, w)`, `environment()` | the hero's ray finds light | L_b += t_b · Le(λ_b) · w |
+/// | `emission(le, w)` | the hero's ray finds light (an emitter or the environment) | L_b += t_b · Le(λ_b) · w |
 /// | `enter(bxdf, m)` | each vertex | read material m's spectra at the bins |
-/// | `prepare_light`, `receives_light`, `light` | next-event estimation | the bins' f·\|cos\| toward the light; L_b += t_b f_b Le_b · w/p_l |
+/// | `prepare_light`, `receives_light`, `light(le, w, p_l)` | next-event estimation | the bins' f·\|cos\| toward the light; L_b += t_b f_b Le_b · w/p_l |
 /// | `follow(bxdf, s)` | the hero samples the BSDF | t_b ← t_b · follow_b / p(ωi \| λ₀) |
 /// | `roulette_max`, `survive(q)` | Russian roulette | B's largest weight counts; t_b ← t_b / q |
 /// | `add_xyz(v)` | the path ends | v += Δλ Σ_b L_b cmf(λ_b) |
@@ -29,6 +29,7 @@
 #include <glm/vec3.hpp>
 
 #include "iris/render/bins.hpp"
+#include "iris/render/lights/light.hpp"
 #include "iris/render/materials/bxdf.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/sampled.hpp"
@@ -37,11 +38,9 @@ namespace iris {
 
 /// \brief The B term of a policy without one: it is never on, and every step is empty.
 struct no_propagation {
-    static constexpr bool on() noexcept { return false; }
     template <class Distribution>
     void start(const Distribution&, float) noexcept {}
-    void emission(std::uint32_t, float) noexcept {}
-    void environment() noexcept {}
+    void emission(const emission_ref&, float) noexcept {}
     template <class B>
     void enter(const B&, std::uint32_t) noexcept {}
     template <class B>
@@ -51,7 +50,7 @@ struct no_propagation {
         return false;
     }
     template <class B>
-    void light(std::uint32_t, float, float) noexcept {}
+    void light(const emission_ref&, float, float) noexcept {}
     template <class B, std::size_t C>
     void follow(const B&, const glm::vec3&, const glm::vec3&, const bsdf_sample<C>&) noexcept {}
     static constexpr float roulette_max(float m) noexcept { return m; }
@@ -65,9 +64,6 @@ class propagation {
 public:
     explicit propagation(const bin_tables<Bins>& tables) noexcept : m_t(tables) {}
 
-    /// \brief B is on: started, and some bin outside the windows.
-    bool on() const noexcept { return m_on; }
-
     /// \brief Start with jitter u: t_b = 1 − r_α(λ_b). Off if every bin is inside the windows.
     template <class Distribution>
     void start(const Distribution& dist, float u) noexcept {
@@ -76,13 +72,13 @@ public:
         m_tb_max = 1.0f;
     }
 
-    /// \brief The hero reached emitter e with its BSDF-sampling weight w.
-    void emission(std::uint32_t e, float w) noexcept {
-        if (m_on) add_light(m_t.emission[e].at(m_bp, m_scratch), w);
-    }
-    /// \brief The hero escaped to the environment (BSDF sampling is its only strategy).
-    void environment() noexcept {
-        if (m_on) add_light(m_t.environment.at(m_bp, m_scratch), 1.0f);
+    /// \brief The hero's BSDF-sampled ray found light `le` (an emitter, or the environment
+    /// it escaped to) with its BSDF-sampling weight w.
+    void emission(const emission_ref& le, float w) noexcept {
+        if (!m_on) return;
+        float k = w;
+        const view v = emitted(le, k);
+        add_light(v, k);
     }
 
     /// \brief A vertex of material m: its reflectance at the bins is read once, here (its
@@ -113,11 +109,12 @@ public:
     /// \brief The shadow ray is clear: L_b += t_b f_b Le_b · w/p_l (w the hero's light-sampling
     /// weight, p_l the light's solid-angle pdf).
     template <class B>
-    void light(std::uint32_t e, float w, float pl) noexcept {
+    void light(const emission_ref& r, float w, float pl) noexcept {
         if (!m_on) return;
-        const auto le = m_t.emission[e].at(m_bp, m_scratch);
-        if constexpr (separable_bxdf<B>) add_light(m_refl, le, m_cos * (w / pl));
-        else add_light(m_f, le, w / pl);
+        float k = w / pl;
+        const view le = emitted(r, k);
+        if constexpr (separable_bxdf<B>) add_light(m_refl, le, m_cos * k);
+        else add_light(m_f, le, k);
     }
 
     /// \brief The bins follow the hero's sampled direction and lobe.
@@ -180,6 +177,23 @@ private:
         view inv_eta2() const { return p.m_t.inv_eta2[p.m_material].at(p.m_bp, p.m_inv_eta2_scratch); }
     };
     bin_spectra spectra() const noexcept { return {*this}; }
+
+    /// \brief Le at the bins as a view, and the scale `k` multiplied by what the view does
+    /// not hold: an emitter's table and its weight (× 1 is exact, so an area light costs what
+    /// it did), or the three basis tables of an environment texel mixed into `m_mix`.
+    view emitted(const emission_ref& r, float& k) noexcept {
+        if (r.count == 1) {
+            if (r.weight[0] != 1.0f) k *= r.weight[0];
+            return m_t.emission[r.first].at(m_bp, m_scratch);
+        }
+        for (std::size_t b = 0; b < Bins; ++b) m_mix[b] = 0.0f;
+        for (std::uint32_t i = 0; i < r.count; ++i) {
+            const view v = m_t.emission[r.first + i].at(m_bp, m_scratch);
+            const float wi = r.weight[static_cast<int>(i)];
+            for (std::size_t b = 0; b < Bins; ++b) m_mix[b] += wi * v[b];
+        }
+        return {m_mix.data(), m_mix.data(), 1.0f, 0.0f};  // x·1 + x·0 = x
+    }
 
     /// \brief L_b += t_b · e_b · s. (The loops take their arrays as restrict pointers: `e` may
     /// view `m_scratch`, a member like L_b, and without them GCC versions the loop for
@@ -270,6 +284,7 @@ private:
     /// t_b (starts at 1 − r_α(λ_b)), L_b, the vertex's reflectance and its f·|cos| toward the light
     sampled_spectrum<Bins> m_tb, m_lb, m_refl, m_f;
     std::array<float, Bins> m_scratch;  ///< for emitters off the lattice (binned_spectrum::at)
+    std::array<float, Bins> m_mix;      ///< an environment texel's spectrum at the bins
     mutable std::array<float, Bins> m_eta_scratch, m_eta2_scratch, m_inv_eta2_scratch;
 };
 

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// \brief The scene description the integrator renders: camera, spectral materials,
-/// emitters, triangle shapes, and the feature summary that picks the instantiation.
+/// emitters, triangle shapes, lights that are not shapes (point, spot, distant), the
+/// environment (uniform or an image), and a summary of the scene's features.
 ///
 /// Pure data, no ray tracing: the `scene` module fills it (JSON or built-in scenes) and
 /// builds an `Intersector` (render/intersector.hpp) over the same shapes, in the same
@@ -15,6 +16,8 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "iris/image.hpp"
 
 #include "iris/spectrum/ior.hpp"
 #include "iris/spectrum/tabulated.hpp"
@@ -84,6 +87,38 @@ struct emitter_desc {
     bool two_sided = false;
 };
 
+namespace light {
+
+/// \brief An isotropic point light at `position`: intensity I(λ) (W·sr⁻¹·nm⁻¹ up to a
+/// constant) is `scene_desc::emitters[emitter].radiance`; irradiance I cos θ / r².
+struct point {
+    glm::vec3 position{0.0f};
+    std::uint32_t emitter = 0;
+};
+
+/// \brief A spot light: a point light whose intensity is I(λ)·s(cos θ) around the unit
+/// axis `direction`, s = 1 inside the cone of half-angle acos(`cos_falloff_start`), 0
+/// outside acos(`cos_total_width`), a smoothstep in cos θ between (pbrt-v4's falloff).
+struct spot {
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};
+    float cos_falloff_start = 1.0f;
+    float cos_total_width = 0.0f;
+    std::uint32_t emitter = 0;
+};
+
+/// \brief Parallel light travelling along the unit `direction`: irradiance E(λ) (the
+/// emitter's `radiance` table) on a surface facing it.
+struct distant {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};
+    std::uint32_t emitter = 0;
+};
+
+}  // namespace light
+
+/// \brief The lights that are not emissive shapes.
+using light_desc = std::variant<light::point, light::spot, light::distant>;
+
 /// \brief A triangle mesh: positions and counter-clockwise (outward) index triples.
 struct triangle_mesh {
     std::vector<glm::vec3> positions;
@@ -100,10 +135,31 @@ struct shape_desc {
     std::optional<std::uint32_t> emitter;
 };
 
-/// \brief A constant radiance arriving from every direction that escapes the scene.
+/// \brief How an environment image covers the sphere of directions (iris's +y is up).
+enum class environment_mapping : std::uint8_t {
+    latlong,     ///< x: φ = 2πx, y: θ = πy from +y; direction (sin θ cos φ, cos θ, sin θ sin φ)
+    equal_area,  ///< pbrt-v4's equal-area octahedral square (Clarberg 2008), its +z as iris's +y
+};
+
+/// \brief An environment image: per texel the weights of the three emission basis spectra
+/// (`environment_desc::basis`), already scaled, row 0 at the top.
+struct environment_map {
+    environment_mapping mapping = environment_mapping::latlong;
+    int width = 0, height = 0;
+    std::vector<glm::vec3> weights;  ///< width × height, each ≥ 0
+    std::string file;                ///< where it came from (for messages and `iris-scene info`)
+};
+
+/// \brief Radiance arriving from every direction that escapes the scene: a constant L(λ)
+/// (`radiance`), or, with `map`, L(λ, ω) = Σ_i w_i(ω)·basis_i(λ) — an RGB image whose texels
+/// are upsampled linearly (iris/spectrum/rgb_upsampling.hpp: a texel of linear sRGB (1, 1, 1)
+/// is D65 at luminance 1), so that the C wavelengths and the B term's bins mix three
+/// precomputed spectra per lookup. `radiance` is then the white the basis sums to.
 struct environment_desc {
     std::string spd_name;
     tabulated_spectrum radiance;
+    std::optional<environment_map> map;
+    std::array<tabulated_spectrum, 3> basis;  ///< with `map` only: red, green, blue emission spectra
 };
 
 /// \brief What a scene contains, so the renderer instantiates only what it needs.
@@ -112,6 +168,8 @@ struct scene_features {
     bool dispersive_rough = false;     ///< a rough dielectric with λ-dependent n
     bool has_specular = false;         ///< any delta BSDF (mirror, smooth glass)
     bool has_environment = false;
+    bool has_environment_map = false;
+    bool has_delta_lights = false;     ///< point, spot or distant lights (no BSDF-only estimate)
     std::vector<std::string> emitter_spds;  ///< distinct SPD names of all emitters
 
     bool dispersive() const noexcept { return dispersive_specular || dispersive_rough; }
@@ -127,6 +185,7 @@ struct scene_desc {
     std::vector<material_desc> materials;
     std::vector<emitter_desc> emitters;
     std::vector<shape_desc> shapes;
+    std::vector<light_desc> lights;  ///< emit through `emitters[light.emitter]`
     std::optional<environment_desc> environment;
 
     std::size_t triangle_count() const noexcept {
@@ -162,8 +221,10 @@ struct scene_desc {
         for (const auto& e : emitters) add(e.spd_name);
         if (environment) {
             f.has_environment = true;
+            f.has_environment_map = environment->map.has_value();
             add(environment->spd_name);
         }
+        f.has_delta_lights = !lights.empty();
         return f;
     }
 };

@@ -1,6 +1,7 @@
 // scene_document → scene_desc: every shape recipe becomes world-space triangles
 // (iris::geometry builds and transforms them), then power-specified emitters are scaled
 // by the area they cover. Geometry failures become iris::scene::error at the shape.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <type_traits>
@@ -9,7 +10,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "iris/exr/exr.hpp"
 #include "iris/geometry/mesh.hpp"
+#include "iris/spectrum/rgb_upsampling.hpp"
 #include "iris/scene/scene.hpp"
 
 namespace iris::scene {
@@ -57,6 +60,49 @@ double triangle_area(const iris::triangle_mesh& m, const std::array<std::uint32_
     return 0.5 * glm::length(glm::cross(b - a, c - a));
 }
 
+/// An environment image → per-texel weights of the three emission basis spectra: linear
+/// sRGB (negative components — out of gamut — clamped to 0, counted in the message of a
+/// map that is all black), upsampled by the same matrix as reflectances but without their
+/// [0, 1] clamp (radiance is unbounded), times the document's scale.
+iris::environment_map read_environment_image(const scene_document& doc, const environment_image_spec& spec) {
+    const auto fail = [&](const std::string& message) -> void {
+        throw error(doc.source, spec.line, spec.pointer + "/image", message);
+    };
+    exr::loaded img;
+    try {
+        img = exr::read(spec.file);
+    } catch (const exr::error& e) {
+        fail(e.what());
+    }
+    iris::environment_map m;
+    m.mapping = spec.mapping;
+    m.width = img.pixels.width();
+    m.height = img.pixels.height();
+    m.file = spec.file.string();
+    if (m.width < 1 || m.height < 1) fail("the environment image has no pixels");
+    if (spec.mapping == environment_mapping::equal_area && m.width != m.height)
+        fail("an equal-area environment image must be square, got " + std::to_string(m.width) + "x" +
+             std::to_string(m.height));
+    const auto& a = iris::detail::rgb_upsampling_matrix();
+    m.weights.reserve(img.pixels.pixel_count());
+    double total = 0.0;
+    for (const auto& p : img.pixels.pixels()) {
+        if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b))
+            fail("the environment image has a pixel that is not finite (NaN or infinity)");
+        const double in[3] = {std::max(0.0f, p.r), std::max(0.0f, p.g), std::max(0.0f, p.b)};
+        glm::vec3 w;
+        for (int i = 0; i < 3; ++i) {
+            const auto r = static_cast<std::size_t>(i);
+            w[i] = static_cast<float>(spec.scale * (a[r][0] * in[0] + a[r][1] * in[1] + a[r][2] * in[2]));
+            if (!std::isfinite(w[i])) fail("the environment image's radiance times its scale is not finite");
+        }
+        total += static_cast<double>(w.x + w.y + w.z);
+        m.weights.push_back(w);
+    }
+    if (!(total > 0.0)) fail("the environment image is black (no positive pixel)");
+    return m;
+}
+
 }  // namespace
 
 iris::scene_desc build_scene(const scene_document& doc) {
@@ -93,6 +139,8 @@ iris::scene_desc build_scene(const scene_document& doc) {
 
         s.shapes.push_back({spec.name, std::move(mesh), spec.material, spec.emitter});
     }
+
+    if (const auto& img = doc.environment_image) s.environment->map = read_environment_image(doc, *img);
 
     // power → radiance: Φ = π·A·∫L dλ per side (a Lambertian emitter's exitance is π·L);
     // the document normalised the SPD to ∫L dλ = 1 over the domain

@@ -7,12 +7,16 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <system_error>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "iris/render/lights/point.hpp"
 #include "iris/spectrum/color.hpp"
+#include "iris/spectrum/named.hpp"
+#include "iris/spectrum/rgb_upsampling.hpp"
 #include "reader.hpp"
 #include "spectra.hpp"
 
@@ -163,10 +167,65 @@ parsed_emitter read_emitter(const reader& r, const std::string& name, const deta
     return e;
 }
 
-std::optional<environment_desc> read_environment(const reader& root, const detail::domain& d) {
+/// The three emission basis spectra of an environment image: the reflectance basis of
+/// iris/spectrum/rgb_upsampling.hpp times D65 at luminance 1, so that a texel of linear sRGB
+/// (1, 1, 1) is D65 with Y = 1 and any texel's colour is its RGB (1 nm over 360–830 nm).
+std::array<tabulated_spectrum, 3> environment_basis(const tabulated_spectrum& d65) {
+    const double k = white_normalisation(d65);
+    std::array<std::vector<double>, 3> v;
+    std::vector<double> lambda;
+    for (int l = 360; l <= 830; ++l) {
+        const double x = l;
+        lambda.push_back(x);
+        const double e = k * d65(x);
+        v[0].push_back(e * rgb_upsampling::red_basis(x));
+        v[1].push_back(e * rgb_upsampling::green_basis(x));
+        v[2].push_back(e * rgb_upsampling::blue_basis(x));
+    }
+    return {tabulated_spectrum(lambda, v[0], outside::zero), tabulated_spectrum(lambda, v[1], outside::zero),
+            tabulated_spectrum(lambda, v[2], outside::zero)};
+}
+
+std::optional<environment_desc> read_environment(const reader& root, const detail::domain& d,
+                                                 const std::filesystem::path& base_dir,
+                                                 std::optional<environment_image_spec>& image) {
     if (!root.has("environment")) return std::nullopt;
     const reader r = root.at("environment");
-    r.expect_object({"spd", "luminance"}, "an environment object");
+    if (r.has("image")) {
+        r.expect_object({"image", "mapping", "scale"}, "an environment image {\"image\": FILE.exr, \"mapping\": ..., \"scale\": ...}");
+        environment_image_spec spec;
+        spec.pointer = r.pointer();
+        spec.line = r.context().locations.find(r.pointer());
+        const reader f = r.at("image");
+        const std::string name = f.string();
+        std::filesystem::path p(name);
+        std::string ext = p.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (name.empty() || ext != ".exr")
+            f.fail("expected an OpenEXR image file (.exr, linear sRGB), got '" + name + "'");
+        if (p.is_relative()) p = base_dir / p;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec))
+            f.fail("environment image '" + name + "' not found (looked for " + p.lexically_normal().string() + ")");
+        spec.file = p;
+        if (r.has("mapping")) {
+            const reader m = r.at("mapping");
+            const std::string v = m.string();
+            if (v == "latlong") spec.mapping = environment_mapping::latlong;
+            else if (v == "equal-area") spec.mapping = environment_mapping::equal_area;
+            else m.fail("unknown environment mapping '" + v + "'; expected latlong or equal-area");
+        }
+        if (r.has("scale"))
+            spec.scale = r.at("scale").number_in(0.0, max_luminance, true, false, "a scale of the image's radiance");
+        image = spec;
+        const auto d65 = find_illuminant("D65");
+        environment_desc env;
+        env.spd_name = "D65";
+        env.radiance = d65->spectrum().scaled(white_normalisation(d65->spectrum()));
+        env.basis = environment_basis(d65->spectrum());
+        return env;
+    }
+    r.expect_object({"spd", "luminance"}, "an environment object {\"spd\": ..., \"luminance\": ...} or {\"image\": FILE.exr, ...}");
     const reader spd_at = r.at("spd");
     detail::named_spd spd = detail::read_spd(spd_at);
     if (!(detail::integrate_over(spd.table, d) > 0.0))
@@ -175,6 +234,81 @@ std::optional<environment_desc> read_environment(const reader& root, const detai
     const double k = white_normalisation(spd.table);
     if (!(k > 0.0) || !std::isfinite(k * y)) spd_at.fail("the spectrum '" + spd.name + "' has no luminance");
     return environment_desc{spd.name, spd.table.scaled(k * y)};
+}
+
+// ---- lights that are not shapes ------------------------------------------------------
+
+/// One point, spot or distant light: its geometry into `s.lights`, its spectrum as a new
+/// emitter (I(λ) or E(λ), scaled here: nothing about it depends on the meshes).
+void read_light(const reader& r, const detail::domain& d, scene_document& doc) {
+    if (!r.is_object()) r.fail("expected a light object {\"type\": \"point\"|\"spot\"|\"distant\", ...}, got " + describe(r.value()));
+    const std::string type = r.at("type").string();
+    scene_desc& s = doc.desc;
+    const auto emitter = static_cast<std::uint32_t>(s.emitters.size());
+    double solid_angle = 0.0;  // ∫s dω of a point or spot light, for "power"
+    std::string_view scale_key;
+    if (type == "point") {
+        r.expect_object({"type", "position", "spd", "intensity", "power"}, "a point light");
+        s.lights.push_back(light::point{read_point(r.at("position"), "a position [x, y, z]"), emitter});
+        solid_angle = 4.0 * std::numbers::pi;
+        scale_key = "intensity";
+    } else if (type == "spot") {
+        r.expect_object({"type", "position", "look_at", "cone_angle", "falloff_angle", "spd", "intensity", "power"},
+                        "a spot light");
+        light::spot sp;
+        sp.position = read_point(r.at("position"), "a position [x, y, z]");
+        const glm::vec3 target = read_point(r.at("look_at"), "a point [x, y, z] the spot is aimed at");
+        const glm::vec3 axis = target - sp.position;
+        if (!(glm::length(axis) > 0.0f)) r.at("look_at").fail("the spot's look_at must differ from its position");
+        sp.direction = glm::normalize(axis);
+        const double cone = r.at("cone_angle").number_in(0.0, 180.0, true, false, "the cone's half-angle in degrees");
+        const double falloff = r.has("falloff_angle")
+                                   ? r.at("falloff_angle").number_in(0.0, cone, false, false,
+                                                                     "the half-angle in degrees where the falloff starts (at most cone_angle)")
+                                   : cone;
+        sp.cos_total_width = static_cast<float>(std::cos(cone * std::numbers::pi / 180.0));
+        sp.cos_falloff_start = static_cast<float>(std::cos(falloff * std::numbers::pi / 180.0));
+        sp.emitter = emitter;
+        s.lights.push_back(sp);
+        solid_angle = std::numbers::pi * static_cast<double>(lights::point_light::from(sp).solid_angle_over_pi());
+        scale_key = "intensity";
+    } else if (type == "distant") {
+        r.expect_object({"type", "direction", "spd", "irradiance"}, "a distant light");
+        const glm::vec3 dir = read_point(r.at("direction"), "the direction [x, y, z] the light travels");
+        if (!(glm::length(dir) > 0.0f)) r.at("direction").fail("the direction must not be zero");
+        s.lights.push_back(light::distant{glm::normalize(dir), emitter});
+        scale_key = "irradiance";
+    } else {
+        r.at("type").fail("unknown light type '" + type + "'; expected one of point, spot, distant");
+    }
+    if (r.has(scale_key) && r.has("power")) r.at("power").fail("give either '" + std::string(scale_key) + "' or 'power', not both");
+    const reader spd_at = r.at("spd");
+    detail::named_spd spd = detail::read_spd(spd_at);
+    const double in_domain = detail::integrate_over(spd.table, d);
+    if (!(in_domain > 0.0))
+        spd_at.fail("the spectrum '" + spd.name + "' is zero over the spectral domain [" + reader::shortest(d.min) + ", " +
+                    reader::shortest(d.max) + "] nm");
+    emitter_desc e;
+    e.spd_name = spd.name;
+    emitter_spec spec;
+    spec.name = type + " light";
+    spec.pointer = r.pointer();
+    spec.line = r.context().locations.find(r.pointer());
+    if (r.has("power")) {  // Φ = ∫s dω · ∫I dλ
+        const double w = r.at("power").number_in(0.0, max_power, true, false, "a radiant power in relative watts");
+        e.radiance = spd.table.scaled(w / (solid_angle * in_domain));
+    } else {
+        const double y = r.has(scale_key) ? r.at(scale_key).number_in(0.0, max_luminance, true, false,
+                                                                      "a luminance Y (of the intensity or irradiance)")
+                                          : 1.0;
+        const double k = white_normalisation(spd.table);
+        if (!(k > 0.0) || !std::isfinite(k * y))
+            spd_at.fail("the spectrum '" + spd.name + "' has no luminance (its Y over 360-830 nm is 0), so it cannot "
+                        "be scaled to a luminance");
+        e.radiance = spd.table.scaled(k * y);
+    }
+    s.emitters.push_back(std::move(e));
+    doc.emitters.push_back(std::move(spec));
 }
 
 // ---- shapes -------------------------------------------------------------------------
@@ -279,7 +413,7 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
     }
 
     const reader top(root, "", ctx);
-    top.expect_object({"name", "description", "spectral_domain", "camera", "materials", "emitters", "environment", "shapes"},
+    top.expect_object({"name", "description", "spectral_domain", "camera", "materials", "emitters", "environment", "lights", "shapes"},
                       "a scene object {\"camera\": ..., \"materials\": ..., \"shapes\": [...]}");
 
     scene_document doc;
@@ -321,7 +455,7 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
     }
     std::map<std::string, std::uint32_t> used_named;
 
-    s.environment = read_environment(top, dom);
+    s.environment = read_environment(top, dom, base_dir, doc.environment_image);
 
     if (!top.has("shapes")) top.fail("missing key 'shapes' (the list of shapes); an empty scene cannot be rendered");
     const reader shapes = top.at("shapes");
@@ -413,9 +547,16 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
         doc.shapes.push_back(std::move(sh));
     }
 
+    // lights after the shapes, so that the shapes' emitters keep their indices
+    if (top.has("lights")) {
+        const reader ls = top.at("lights");
+        if (!ls.is_array()) ls.fail("expected an array of lights [{\"type\": \"point\", ...}], got " + describe(ls.value()));
+        for (std::size_t i = 0; i < ls.size(); ++i) read_light(ls.at(i), dom, doc);
+    }
+
     if (s.emitters.empty() && !s.environment)
         ctx.fail_at("/shapes", "",
-                    "the scene has no emitter: give a shape an \"emitter\" or add an \"environment\"");
+                    "the scene has no emitter: give a shape an \"emitter\", add a \"lights\" entry or an \"environment\"");
     return doc;
 }
 

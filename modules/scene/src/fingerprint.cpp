@@ -80,8 +80,10 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
                             }
                         },
                         x.ior);
-                } else {
+                } else if constexpr (std::is_same_v<T, material::diffuse> || std::is_same_v<T, material::conductor>) {
                     h(x.reflectance);
+                } else {
+                    static_assert(sizeof(T) == 0, "fingerprint: hash every field of a new material type");
                 }
             },
             m);
@@ -106,6 +108,37 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
     if (scene.environment) {
         h(std::string_view(scene.environment->spd_name));
         h(scene.environment->radiance);
+        if (const auto& m = scene.environment->map) {  // hashed only when present: older scenes keep their fingerprint
+            h(static_cast<int>(m->mapping));
+            h(m->width);
+            h(m->height);
+            for (const auto& w : m->weights) h(w);
+            for (const auto& b : scene.environment->basis) h(b);
+        }
+    }
+    if (!scene.lights.empty()) {  // likewise
+        h(scene.lights.size());
+        for (const auto& l : scene.lights) {
+            h(l.index());
+            std::visit(
+                [&](const auto& x) {
+                    using L = std::decay_t<decltype(x)>;
+                    h(x.emitter);
+                    if constexpr (std::is_same_v<L, light::point>) {
+                        h(x.position);
+                    } else if constexpr (std::is_same_v<L, light::spot>) {
+                        h(x.position);
+                        h(x.direction);
+                        h(x.cos_falloff_start);
+                        h(x.cos_total_width);
+                    } else if constexpr (std::is_same_v<L, light::distant>) {
+                        h(x.direction);
+                    } else {
+                        static_assert(sizeof(L) == 0, "fingerprint: hash every field of a new light type");
+                    }
+                },
+                l);
+        }
     }
     return h.value();
 }

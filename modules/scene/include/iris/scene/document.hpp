@@ -65,6 +65,16 @@ struct emitter_spec {
     std::optional<double> power;
 };
 
+/// \brief An environment image the document names: read by `build_scene` (its texels
+/// become `environment_map::weights`, linear sRGB upsampled and multiplied by `scale`).
+struct environment_image_spec {
+    std::filesystem::path file;  ///< absolute, or relative to the working directory
+    environment_mapping mapping = environment_mapping::latlong;
+    double scale = 1.0;
+    std::string pointer;
+    std::size_t line = 0;
+};
+
 /// \brief A parsed, checked scene that has not been meshed yet.
 struct scene_document {
     std::string source;           ///< the name used in messages (file path or builtin:NAME)
@@ -72,6 +82,7 @@ struct scene_document {
     scene_desc desc;              ///< camera, domain, materials, emitters, environment; no shapes
     std::vector<emitter_spec> emitters;  ///< parallel to `desc.emitters`
     std::vector<shape_spec> shapes;
+    std::optional<environment_image_spec> environment_image;
 };
 
 /// \brief Parse and check a scene. `source_name` is used in messages; relative mesh paths
