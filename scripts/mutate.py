@@ -185,6 +185,15 @@ MUTATIONS = [
      [("include/iris/metrics/bias_variance.hpp", "            const double s2 = ss / (k - 1);",
        "            const double s2 = ss / k;")],
      ["metrics_test"], "BiasVariance"),
+    # issue 31: lights in solid angle (each checked by hand on 2026-12-05: caught)
+    ("latlong-jacobian-without-sin-theta",
+     [("include/iris/render/lights/environment.hpp", "        return 2.0f * pi * pi * std::sin(pi * p.y);",
+       "        return 2.0f * pi * pi;")],
+     ["render_test"], "LightSampling.*"),
+    ("spot-solid-angle-full-falloff",
+     [("include/iris/render/lights/point.hpp", "+ 0.5f * (cos_falloff_start - cos_total_width)",
+       "+ (cos_falloff_start - cos_total_width)")],
+     ["render_test"], "LightSampling.*"),
 ]
 
 
