@@ -39,7 +39,7 @@ MUTATIONS = [
        "    const float floor = 0.0f * eps * std::fmax(m.x, std::fmax(m.y, m.z));")],
      ["ray_offset_test", "renderer_core_test"], "RayOffset|RendererCore"),
     ("light-point-barycentrics",
-     [("include/iris/render/lights.hpp", "const float b1 = u.y * su, b2 = su - b1;", "const float b1 = u.y * su, b2 = 1.0f - su - b1;")],
+     [("include/iris/render/lights/area.hpp", "const float b1 = u.y * su, b2 = su - b1;", "const float b1 = u.y * su, b2 = 1.0f - su - b1;")],
      ["direct_light_test", "estimators_test"], "DirectLight|Estimators"),
     ("hero-fresnel-x1.05",
      [("include/iris/render/materials/fresnel.hpp", "    return fresnel_walter(std::fabs(cos_i), cos_i < 0.0f ? 1.0f / eta2 : eta2);",
