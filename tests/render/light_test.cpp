@@ -220,7 +220,9 @@ chi2_result map_fit(const iris::lights::environment_light& sampler, const iris::
             observed.back() += 1.0;
             continue;
         }
-        if (checked++ < 2000) EXPECT_NEAR(d->pdf, sampler.pdf(d->dir), 2e-3f * d->pdf);  // sample() reports pdf()
+        if (checked++ < 2000) {
+            EXPECT_NEAR(d->pdf, sampler.pdf(d->dir), 2e-3f * d->pdf);  // sample() reports pdf()
+        }
         const glm::vec2 p = to_square(d->dir);
         const int bx = std::min(bw - 1, static_cast<int>(p.x * static_cast<float>(bw)));
         const int by = std::min(bh - 1, static_cast<int>(p.y * static_cast<float>(bh)));

@@ -95,7 +95,7 @@ public:
                 [&](const auto& x) {
                     using L = std::decay_t<decltype(x)>;
                     if constexpr (std::is_same_v<L, light::distant>) {
-                        m_others.push_back(lights::distant_light{glm::normalize(x.direction), x.emitter});
+                        m_others.push_back(lights::distant_light{glm::normalize(x.direction), x.emitter, 0.0f});
                         weight.push_back(r2 * power[x.emitter]);
                     } else {
                         const auto p = lights::point_light::from(x);

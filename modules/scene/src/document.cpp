@@ -233,7 +233,7 @@ std::optional<environment_desc> read_environment(const reader& root, const detai
     const double y = r.has("luminance") ? r.at("luminance").number_in(0.0, max_luminance, true, false, "a luminance Y") : 1.0;
     const double k = white_normalisation(spd.table);
     if (!(k > 0.0) || !std::isfinite(k * y)) spd_at.fail("the spectrum '" + spd.name + "' has no luminance");
-    return environment_desc{spd.name, spd.table.scaled(k * y)};
+    return environment_desc{spd.name, spd.table.scaled(k * y), std::nullopt, {}};
 }
 
 // ---- lights that are not shapes ------------------------------------------------------

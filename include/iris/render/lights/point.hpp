@@ -29,9 +29,9 @@ struct point_light {
     std::uint32_t emitter = 0;
     float probability = 0.0f;
 
-    static point_light from(const light::point& p) noexcept { return {p.position, {0.0f, 0.0f, 1.0f}, -1.0f, -1.0f, p.emitter}; }
+    static point_light from(const light::point& p) noexcept { return {p.position, {0.0f, 0.0f, 1.0f}, -1.0f, -1.0f, p.emitter, 0.0f}; }
     static point_light from(const light::spot& s) noexcept {
-        return {s.position, glm::normalize(s.direction), s.cos_falloff_start, s.cos_total_width, s.emitter};
+        return {s.position, glm::normalize(s.direction), s.cos_falloff_start, s.cos_total_width, s.emitter, 0.0f};
     }
 
     bool is_spot() const noexcept { return cos_total_width > -1.0f; }
