@@ -1,10 +1,14 @@
 // Fuzz target: the scene-file parser (iris::scene_document, no CGAL) on arbitrary bytes.
 // Properties: parsing either succeeds or throws iris::scene::error (never another
 // exception, never a crash); an error names the source; a parsed scene has shapes, a
-// light, material and emitter indices in range and finite, non-negative emission.
+// light, material and emitter indices in range and finite, non-negative emission; lights'
+// emitters in range, spot cones ordered, directions unit.
 #include <cmath>
 #include <cstdint>
 #include <string_view>
+#include <variant>
+
+#include <glm/geometric.hpp>
 
 #include <iris/scene/document.hpp>
 
@@ -28,6 +32,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 if (!std::isfinite(v) || v < 0.0) iris::fuzz::fail("non-finite or negative emission");
         if (!(s.camera.fov_y_degrees > 0.0f && s.camera.fov_y_degrees < 180.0f)) iris::fuzz::fail("bad fov accepted");
         if (s.camera.width < 1 || s.camera.height < 1) iris::fuzz::fail("bad resolution accepted");
+        for (const auto& l : s.lights) {
+            const std::uint32_t e = std::visit([](const auto& x) { return x.emitter; }, l);
+            if (e >= s.emitters.size()) iris::fuzz::fail("light emitter index out of range");
+            if (const auto* sp = std::get_if<iris::light::spot>(&l)) {
+                if (!(sp->cos_total_width <= sp->cos_falloff_start && sp->cos_falloff_start < 1.0f &&
+                      sp->cos_total_width >= -1.0f))
+                    iris::fuzz::fail("a spot's cone and falloff out of order");
+                if (!(std::fabs(glm::length(sp->direction) - 1.0f) < 1e-4f)) iris::fuzz::fail("a spot's axis is not unit");
+            }
+            if (const auto* d = std::get_if<iris::light::distant>(&l))
+                if (!(std::fabs(glm::length(d->direction) - 1.0f) < 1e-4f)) iris::fuzz::fail("a distant direction is not unit");
+        }
         (void)s.features();
     } catch (const iris::scene::error& e) {
         if (e.file() != "fuzz.json") iris::fuzz::fail("an error that does not name the file");

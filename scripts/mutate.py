@@ -194,6 +194,17 @@ MUTATIONS = [
      [("include/iris/render/lights/point.hpp", "+ 0.5f * (cos_falloff_start - cos_total_width)",
        "+ (cos_falloff_start - cos_total_width)")],
      ["render_test"], "LightSampling.*"),
+    ("environment-without-mis",
+     [("include/iris/render/integrator.hpp", "        const float pl = hp.prev_delta ? 0.0f : m_lights.pdf_environment(dir);",
+       "        const float pl = 0.0f;")],
+     ["light_render_test"], "LightRender"),
+    ("point-light-inverse-distance",
+     [("include/iris/render/lights/point.hpp", "        out.le = {emitter, 1, {s / d2, 0.0f, 0.0f}};",
+       "        out.le = {emitter, 1, {s / std::sqrt(d2), 0.0f, 0.0f}};")],
+     ["light_render_test"], "LightRender"),
+    ("spot-linear-falloff",
+     [("include/iris/render/lights/point.hpp", "        return t * t * (3.0f - 2.0f * t);", "        return t;")],
+     ["light_render_test"], "LightRender"),
 ]
 
 

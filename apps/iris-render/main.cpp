@@ -264,6 +264,7 @@ int run_render(const args& a, const ranks_session& mpi) {
     } catch (const std::exception& e) {
         throw iris::app::usage_error(e.what());
     }
+    for (const auto& m : iris::scene::approximations(scene)) fmt::print(stderr, "iris-render: warning: {}\n", m);
 
     iris::renderer::options opt;
     opt.preset = a.preset;

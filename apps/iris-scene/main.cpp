@@ -203,6 +203,7 @@ void info(const std::string& name, bool json) {
         j["has_environment_map"] = f.has_environment_map;
         j["has_delta_lights"] = f.has_delta_lights;
         j["emitter_spds"] = f.emitter_spds;
+        j["approximated"] = iris::scene::approximations(s);
         j["load_seconds"] = l.seconds;
         fmt::print("{}\n", j.dump(2));
         return;
@@ -222,6 +223,7 @@ void info(const std::string& name, bool json) {
     fmt::print("lights       {}\n", s.lights.size());
     for (const auto& li : s.lights) fmt::print("  {}\n", light_summary(li));
     fmt::print("environment  {}\n", environment_summary(s));
+    for (const auto& m : iris::scene::approximations(s)) fmt::print("approximated {}\n", m);
     fmt::print("bounds       [{:g}, {:g}, {:g}] - [{:g}, {:g}, {:g}]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
     fmt::print("camera       {}x{} fov={:g} position=[{:g}, {:g}, {:g}] look_at=[{:g}, {:g}, {:g}]\n", s.camera.width,
                s.camera.height, s.camera.fov_y_degrees, s.camera.position.x, s.camera.position.y, s.camera.position.z,
@@ -240,6 +242,7 @@ void check(const std::string& file) {
     const loaded l = load(file);
     fmt::print("ok: {} ({} triangles, {} shapes, {} emitters)\n", l.scene.name, l.scene.triangle_count(),
                l.scene.shapes.size(), l.scene.emitters.size());
+    for (const auto& m : iris::scene::approximations(l.scene)) fmt::print("warning: {}\n", m);
     // not errors (the scene renders), but glass without an inside refracts nonsense
     for (const auto& p : iris::scene::check_dielectric_solids(l.scene))
         fmt::print("warning: shape {} '{}' is glass but not a closed outward solid: {}\n", p.shape,

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <variant>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -138,6 +139,57 @@ std::vector<bad_case> bad_cases() {
          "/shapes/1/flip"},
         {"materials not an object", R"({"camera": {"position": [0, 0, 1], "look_at": [0, 0, 0]}, "materials": [1], "shapes": []})",
          "expected an object of named materials, got array [1]", 1, "/materials"},
+        // lights (docs/scene-format.md#lights)
+        {"lights not an array", replace(v, "  \"shapes\": [", "  \"lights\": {}, \"shapes\": ["), "expected an array", 7, "/lights"},
+        {"unknown light type", replace(v, "  \"shapes\": [", "  \"lights\": [{\"type\": \"area\"}], \"shapes\": ["),
+         "unknown light type 'area'; expected one of point, spot, distant", 7, "/lights/0/type"},
+        {"point light without a position",
+         replace(v, "  \"shapes\": [", "  \"lights\": [{\"type\": \"point\", \"spd\": \"D65\"}], \"shapes\": ["),
+         "missing key 'position'", 7, "/lights/0"},
+        {"unknown point light key",
+         replace(v, "  \"shapes\": [",
+                 "  \"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"spd\": \"D65\", \"radius\": 1}], \"shapes\": ["),
+         "unknown key 'radius'; expected one of type, position, spd, intensity, power", 7, "/lights/0"},
+        {"intensity and power",
+         replace(v, "  \"shapes\": [",
+                 "  \"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"spd\": \"D65\", \"intensity\": 1, \"power\": 2}], \"shapes\": ["),
+         "give either 'intensity' or 'power', not both", 7, "/lights/0/power"},
+        {"spot falloff beyond its cone",
+         replace(v, "  \"shapes\": [",
+                 "  \"lights\": [{\"type\": \"spot\", \"position\": [0, 1, 0], \"look_at\": [0, 0, 0], \"cone_angle\": 30, "
+                 "\"falloff_angle\": 45, \"spd\": \"D65\"}], \"shapes\": ["),
+         "(at most cone_angle) in [0, 30], got 45", 7, "/lights/0/falloff_angle"},
+        {"spot aimed at itself",
+         replace(v, "  \"shapes\": [",
+                 "  \"lights\": [{\"type\": \"spot\", \"position\": [0, 1, 0], \"look_at\": [0, 1, 0], \"cone_angle\": 30, "
+                 "\"spd\": \"D65\"}], \"shapes\": ["),
+         "the spot's look_at must differ from its position", 7, "/lights/0/look_at"},
+        {"spot too narrow",
+         replace(v, "  \"shapes\": [",
+                 "  \"lights\": [{\"type\": \"spot\", \"position\": [0, 1, 0], \"look_at\": [0, 0, 0], \"cone_angle\": 1e-30, "
+                 "\"spd\": \"D65\", \"power\": 1}], \"shapes\": ["),
+         "the cone is too narrow", 7, "/lights/0/cone_angle"},
+        {"distant light without a direction",
+         replace(v, "  \"shapes\": [", "  \"lights\": [{\"type\": \"distant\", \"direction\": [0, 0, 0], \"spd\": \"D65\"}], \"shapes\": ["),
+         "the direction must not be zero", 7, "/lights/0/direction"},
+        {"light spectrum outside the domain",
+         replace(v, "  \"shapes\": [",
+                 "  \"lights\": [{\"type\": \"distant\", \"direction\": [0, -1, 0], "
+                 "\"spd\": {\"wavelengths\": [300, 350], \"values\": [1, 1]}}], \"shapes\": ["),
+         "is zero over the spectral domain", 7, "/lights/0/spd"},
+        // environment images (docs/scene-format.md#environment)
+        {"environment image not an EXR",
+         replace(v, "  \"shapes\": [", "  \"environment\": {\"image\": \"sky.hdr\"}, \"shapes\": ["),
+         "expected an OpenEXR image file (.exr, linear sRGB), got 'sky.hdr'", 7, "/environment/image"},
+        {"environment image missing",
+         replace(v, "  \"shapes\": [", "  \"environment\": {\"image\": \"no-such-sky.exr\"}, \"shapes\": ["),
+         "environment image 'no-such-sky.exr' not found", 7, "/environment/image"},
+        {"environment image with an spd",
+         replace(v, "  \"shapes\": [", "  \"environment\": {\"image\": \"sky.exr\", \"spd\": \"D65\"}, \"shapes\": ["),
+         "unknown key 'spd'", 7, "/environment"},
+        {"environment without spd or image",
+         replace(v, "  \"shapes\": [", "  \"environment\": {\"luminance\": 2}, \"shapes\": ["), "missing key 'spd'", 7,
+         "/environment"},
     };
 }
 
@@ -312,3 +364,45 @@ TEST(SceneDocument, EveryCompleteExampleInTheDocsParses) {
 }
 
 }  // namespace
+
+namespace {
+/// \brief ∫ s(λ) dλ over [380, 780] nm (midpoint sum; the tables are piecewise linear).
+double integral(const iris::tabulated_spectrum& s) {
+    double sum = 0.0;
+    for (double l = 380.05; l < 780.0; l += 0.1) sum += s(static_cast<float>(l)) * 0.1;
+    return sum;
+}
+}  // namespace
+
+// A light's "intensity"/"irradiance" is the luminance Y of I or E; its "power" is
+// ∫s dω · ∫I dλ over the spectral domain (docs/scene-format.md#lights). Each light adds an
+// emitter after the shapes' emitters.
+TEST(SceneDocument, LightsScaleToTheirLuminanceOrPower) {
+    const double pi = 3.14159265358979323846;
+    const auto d = parse_scene_document(
+        replace(valid, "  \"shapes\": [",
+                R"(  "lights": [{"type": "point", "position": [0, 1, 0], "spd": "A", "intensity": 3},
+                              {"type": "point", "position": [0, 1, 0], "spd": "D65", "power": 8},
+                              {"type": "spot", "position": [0, 1, 0], "look_at": [0, 0, 0], "cone_angle": 60, "falloff_angle": 30,
+                               "spd": "D65", "power": 5},
+                              {"type": "distant", "direction": [0, -2, 0], "spd": "blackbody:3000", "irradiance": 0.5}],
+  "shapes": [)"),
+        "lights.json", {});
+    ASSERT_EQ(d.desc.lights.size(), 4u);
+    ASSERT_EQ(d.desc.emitters.size(), 5u);  // the area light first
+    for (std::size_t i = 0; i < 4; ++i) {
+        const std::uint32_t e = std::visit([](const auto& l) { return l.emitter; }, d.desc.lights[i]);
+        EXPECT_EQ(e, i + 1);
+    }
+    EXPECT_NEAR(iris::luminance(d.desc.emitters[1].radiance), 3.0, 1e-6);
+    EXPECT_NEAR(4.0 * pi * integral(d.desc.emitters[2].radiance), 8.0, 8e-3);
+    const double c_start = std::cos(pi / 6.0), c_width = std::cos(pi / 3.0);
+    const double spot_solid_angle = 2.0 * pi * (1.0 - c_start) + pi * (c_start - c_width);
+    EXPECT_NEAR(spot_solid_angle * integral(d.desc.emitters[3].radiance), 5.0, 5e-3);
+    EXPECT_NEAR(iris::luminance(d.desc.emitters[4].radiance), 0.5, 1e-6);
+    const auto& dist = std::get<iris::light::distant>(d.desc.lights[3]);
+    EXPECT_FLOAT_EQ(dist.direction.y, -1.0f);  // normalised
+    const auto& spot = std::get<iris::light::spot>(d.desc.lights[2]);
+    EXPECT_NEAR(spot.cos_total_width, c_width, 1e-6);
+    EXPECT_NEAR(spot.cos_falloff_start, c_start, 1e-6);
+}

@@ -208,17 +208,8 @@ private:
     template <class Prop>
     void collect_environment(const glm::vec3& dir, const sampled_wavelengths<C>& wl, hero_path& hp,
                              Prop& bterm) const noexcept {
-        const emission_ref le = m_lights.environment_emission(dir);
-        float denom, w_hero = 1.0f;
         const float pl = hp.prev_delta ? 0.0f : m_lights.pdf_environment(dir);
-        if (pl > 0.0f) {
-            denom = hwss_emission_ratio_sum(hp.rho, hp.rho_before, pl, hp.prev_pdf);
-            w_hero = balance_heuristic(hp.prev_pdf, pl);
-        } else {
-            denom = hwss_ratio_sum(hp.rho);
-        }
-        hp.lc += hp.beta * m_hero.emitted(le, wl) / denom;
-        bterm.emission(le, w_hero);
+        collect(m_lights.environment_emission(dir), pl > 0.0f, pl, wl, hp, bterm);
     }
 
     /// \brief Emission found by BSDF sampling (or seen directly), MIS-weighted against light
@@ -229,15 +220,23 @@ private:
         const emitter_desc& em = m_scene.emitters[e];
         const float cos_l = glm::dot(vx.ng, vx.wo);
         if (!(em.two_sided ? cos_l != 0.0f : cos_l > 0.0f)) return;
+        const float pl = hp.prev_delta ? 0.0f : m_lights.pdf_area(hit.shape, hit.prim) * hit.t * hit.t / std::fabs(cos_l);
+        collect(emission_ref{e, 1, {1.0f, 0.0f, 0.0f}}, !hp.prev_delta, pl, wl, hp, bterm);
+    }
+
+    /// \brief Emission `le` reached by BSDF sampling, whose light-sampling pdf (solid angle)
+    /// is `pl`: with `mis`, the balance heuristic over C wavelengths × {BSDF, light}
+    /// (docs/method.md), otherwise over the wavelengths alone.
+    template <class Prop>
+    void collect(const emission_ref& le, bool mis, float pl, const sampled_wavelengths<C>& wl, hero_path& hp,
+                 Prop& bterm) const noexcept {
         float denom, w_hero = 1.0f;
-        if (hp.prev_delta) {
-            denom = hwss_ratio_sum(hp.rho);
-        } else {
-            const float pl = m_lights.pdf_area(hit.shape, hit.prim) * hit.t * hit.t / std::fabs(cos_l);
+        if (mis) {
             denom = hwss_emission_ratio_sum(hp.rho, hp.rho_before, pl, hp.prev_pdf);
             w_hero = balance_heuristic(hp.prev_pdf, pl);
+        } else {
+            denom = hwss_ratio_sum(hp.rho);
         }
-        const emission_ref le{e, 1, {1.0f, 0.0f, 0.0f}};
         hp.lc += hp.beta * m_hero.emitted(le, wl) / denom;
         bterm.emission(le, w_hero);
     }

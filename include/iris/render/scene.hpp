@@ -148,6 +148,7 @@ struct environment_map {
     int width = 0, height = 0;
     std::vector<glm::vec3> weights;  ///< width × height, each ≥ 0
     std::string file;                ///< where it came from (for messages and `iris-scene info`)
+    std::size_t negative_texels = 0; ///< texels with a negative (out-of-gamut) component, clamped to 0
 };
 
 /// \brief Radiance arriving from every direction that escapes the scene: a constant L(λ)

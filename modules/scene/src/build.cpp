@@ -61,8 +61,8 @@ double triangle_area(const iris::triangle_mesh& m, const std::array<std::uint32_
 }
 
 /// An environment image → per-texel weights of the three emission basis spectra: linear
-/// sRGB (negative components — out of gamut — clamped to 0, counted in the message of a
-/// map that is all black), upsampled by the same matrix as reflectances but without their
+/// sRGB (negative components — out of gamut — clamped to 0 and counted, for the tools'
+/// warning), upsampled by the same matrix as reflectances but without their
 /// [0, 1] clamp (radiance is unbounded), times the document's scale.
 iris::environment_map read_environment_image(const scene_document& doc, const environment_image_spec& spec) {
     const auto fail = [&](const std::string& message) -> void {
@@ -89,6 +89,7 @@ iris::environment_map read_environment_image(const scene_document& doc, const en
     for (const auto& p : img.pixels.pixels()) {
         if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b))
             fail("the environment image has a pixel that is not finite (NaN or infinity)");
+        if (p.r < 0.0f || p.g < 0.0f || p.b < 0.0f) ++m.negative_texels;
         const double in[3] = {std::max(0.0f, p.r), std::max(0.0f, p.g), std::max(0.0f, p.b)};
         glm::vec3 w;
         for (int i = 0; i < 3; ++i) {
@@ -155,6 +156,17 @@ iris::scene_desc build_scene(const scene_document& doc) {
         s.emitters[i].radiance = s.emitters[i].radiance.scaled(k);
     }
     return s;
+}
+
+std::vector<std::string> approximations(const iris::scene_desc& s) {
+    std::vector<std::string> out;
+    if (s.environment && s.environment->map && s.environment->map->negative_texels > 0) {
+        const auto& m = *s.environment->map;
+        out.push_back("environment image " + m.file + ": " + std::to_string(m.negative_texels) + " of " +
+                      std::to_string(m.weights.size()) +
+                      " texels have a negative (out-of-sRGB-gamut) component, clamped to 0");
+    }
+    return out;
 }
 
 std::vector<shape_problem> check_dielectric_solids(const iris::scene_desc& s) {

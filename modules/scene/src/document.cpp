@@ -268,6 +268,9 @@ void read_light(const reader& r, const detail::domain& d, scene_document& doc) {
                                    : cone;
         sp.cos_total_width = static_cast<float>(std::cos(cone * std::numbers::pi / 180.0));
         sp.cos_falloff_start = static_cast<float>(std::cos(falloff * std::numbers::pi / 180.0));
+        if (!(sp.cos_total_width < 1.0f))
+            r.at("cone_angle").fail("the cone is too narrow: at " + reader::shortest(cone) +
+                                    " degrees it holds no direction in single precision (give at least 0.015 degrees)");
         sp.emitter = emitter;
         s.lights.push_back(sp);
         solid_angle = std::numbers::pi * static_cast<double>(lights::point_light::from(sp).solid_angle_over_pi());
@@ -296,7 +299,10 @@ void read_light(const reader& r, const detail::domain& d, scene_document& doc) {
     spec.line = r.context().locations.find(r.pointer());
     if (r.has("power")) {  // Φ = ∫s dω · ∫I dλ
         const double w = r.at("power").number_in(0.0, max_power, true, false, "a radiant power in relative watts");
-        e.radiance = spd.table.scaled(w / (solid_angle * in_domain));
+        const double k = w / (solid_angle * in_domain);
+        if (!(k > 0.0) || !std::isfinite(k))
+            r.at("power").fail("cannot scale to a power of " + reader::shortest(w) + ": the light's intensity would not be finite");
+        e.radiance = spd.table.scaled(k);
     } else {
         const double y = r.has(scale_key) ? r.at(scale_key).number_in(0.0, max_luminance, true, false,
                                                                       "a luminance Y (of the intensity or irradiance)")

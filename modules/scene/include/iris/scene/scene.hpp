@@ -64,6 +64,10 @@ struct shape_problem {
 /// always pass; a mesh file may not. A warning, not an error: such a scene still renders.
 std::vector<shape_problem> check_dielectric_solids(const iris::scene_desc& scene);
 
+/// \brief What a scene's loading approximated, one sentence each (e.g. an environment
+/// image's negative texels clamped to 0): the tools print them as warnings.
+std::vector<std::string> approximations(const iris::scene_desc& scene);
+
 /// \brief Write every shape's triangles as one mesh (CGAL IO); the format follows the
 /// extension of `path`: .obj, .ply or .off. \throws error naming the path if it cannot be
 /// written or the extension is not one of those.
