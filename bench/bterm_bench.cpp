@@ -49,7 +49,7 @@ inline float glass_vertices(const glass_tables<B>& t, int count) {
         const iris::bin_position bp = t.lattice.position(static_cast<float>(i & 255) / 256.0f);
         const table_spectra<B> spectra{t, bp, s1, s2};
         const auto w = iris::smooth_dielectric{glass}.follow<B>(
-            glm::vec3(0.0f, 0.0f, 1.0f), wo, wo, (i & 2048) ? iris::lobe::reflection : iris::lobe::transmission, spectra);
+            wo, wo, (i & 2048) ? iris::lobe::reflection : iris::lobe::transmission, spectra);
         for (std::size_t b = 0; b < B; ++b) tb[b] *= w[b] * 1.5f;
         acc += tb[static_cast<std::size_t>(i) % B];
         if (!(tb[0] > 1e-20f && tb[0] < 1e20f)) tb = iris::sampled_spectrum<B>(1.0f);

@@ -182,6 +182,18 @@ TEST(Embree, EmbreeErrorsBecomeOneExceptionType) {
     auto nan = g::make_cube({0, 0, 0}, 1.0f);
     nan.positions[0].x = std::nanf("");
     EXPECT_THROW(s.add_mesh(nan), e::error);
+    auto normals = g::make_cube({0, 0, 0}, 1.0f);  // shading normals and uvs: none or one per vertex, finite
+    normals.normals.assign(normals.positions.size() - 1, glm::vec3(0, 0, 1));
+    EXPECT_THROW(s.add_mesh(normals), e::error);
+    normals.normals.assign(normals.positions.size(), glm::vec3(0, 0, 1));
+    normals.normals[3].y = std::nanf("");
+    EXPECT_THROW(s.add_mesh(normals), e::error);
+    auto uvs = g::make_cube({0, 0, 0}, 1.0f);
+    uvs.uvs.assign(uvs.positions.size() + 1, glm::vec2(0.5f));
+    EXPECT_THROW(s.add_mesh(uvs), e::error);
+    uvs.uvs.assign(uvs.positions.size(), glm::vec2(0.5f));
+    uvs.uvs[0].x = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(s.add_mesh(uvs), e::error);
     EXPECT_EQ(s.add_mesh(g::make_cube({0, 0, 0}, 1.0f)), 0u);  // refusals take no id
 }
 

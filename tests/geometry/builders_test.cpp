@@ -202,4 +202,23 @@ TEST(Builders, BadArgumentsThrowGeometryErrors) {
     EXPECT_THROW(g::enclosed_volume(g::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0})), g::error);
 }
 
+// Shading normals move with the surface (the inverse transpose keeps them perpendicular to
+// it under a non-uniform scale), uvs are carried unchanged.
+TEST(Builders, TransformedCarriesNormalsAndUvs) {
+    g::triangle_mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.triangles = {{0, 1, 2}};
+    const glm::vec3 n = glm::normalize(glm::vec3(1, 1, 1));
+    m.normals = {n, n, n};
+    m.uvs = {{0, 0}, {1, 0}, {0.5f, 2}};
+    const glm::mat4 t = g::make_transform({1, 2, 3}, {30, 10, 0}, {2, 0.5f, 3});
+    const auto out = g::transformed(m, t);
+    ASSERT_EQ(out.normals.size(), 3u);
+    ASSERT_EQ(out.uvs.size(), 3u);
+    const glm::vec3 tangent = glm::normalize(glm::vec3(1, -1, 0));  // perpendicular to n
+    const glm::vec3 moved = glm::mat3(t) * tangent;
+    EXPECT_NEAR(glm::dot(glm::normalize(out.normals[0]), glm::normalize(moved)), 0.0f, 1e-6f);
+    EXPECT_EQ(out.uvs[2].y, 2.0f);
+}
+
 }  // namespace

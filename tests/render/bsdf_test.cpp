@@ -102,7 +102,7 @@ TEST(Bsdf, DeltaWeightAtTheBinsIsTheScalarFresnel) {
         const glm::vec3 wo(s, 0.0f, co);
         for (auto kind : {iris::lobe::reflection, iris::lobe::transmission}) {
             const auto w = iris::smooth_dielectric{std::get<iris::material::dielectric>(glass)}.follow<M>(
-                n, wo, wo, kind, iris::sampled_spectra<M>::with_eta(eta));
+                wo, wo, kind, iris::sampled_spectra<M>::with_eta(eta));
             for (std::size_t k = 0; k < M; ++k) {
                 const double f = fresnel_reference(co, etas[k]);
                 const double et = co > 0.0f ? etas[k] : 1.0 / etas[k];
@@ -194,8 +194,8 @@ TEST(Bsdf, FresnelMatchesClosedFormsForTheHeroAndTheBins) {
             const iris::sampled_spectrum<M> eta(ni);
             const iris::smooth_dielectric bxdf{std::get<iris::material::dielectric>(glass)};
             const auto spectra = iris::sampled_spectra<M>::with_eta(eta);
-            const auto rb = bxdf.follow<M>(n, wo, wo, iris::lobe::reflection, spectra);
-            const auto tb = bxdf.follow<M>(n, wo, wo, iris::lobe::transmission, spectra);
+            const auto rb = bxdf.follow<M>(wo, wo, iris::lobe::reflection, spectra);
+            const auto tb = bxdf.follow<M>(wo, wo, iris::lobe::transmission, spectra);
             const double et = c.cos_theta > 0.0 ? nd : 1.0 / nd;
             for (std::size_t k = 0; k < M; ++k) {
                 EXPECT_NEAR(rb[k], c.r, tol) << c.what << ", n = " << nd << ", bins";

@@ -8,7 +8,8 @@
 /// that follows BSDF samples alone and adds the emission of every emitter it hits, front
 /// side (or either side if two-sided), with weight 1. No light sampling, no MIS, no hero
 /// rotation, no restriction or B term, no lattice tables: spectra are read from the scene's
-/// own tables. Per sample,
+/// own tables. Surface geometry comes from the same `surface_interaction` (its point,
+/// normals and shading frame). Per sample,
 ///   XYZ = L(λ) · (x̄, ȳ, z̄)(λ) · Δ / ∫ȳ,   L(λ) = Σ_vertices β(λ) · Le(λ).
 /// It shares with `path_integrator` only what both must trust: the scene, the ray tracer
 /// and the BSDFs' sampling routine (guarded by the BSDF tests). Not even the ray offsets:
@@ -34,6 +35,7 @@
 #include "iris/render/bsdf.hpp"
 #include "iris/render/frame.hpp"
 #include "iris/render/integrator.hpp"
+#include "iris/render/interaction.hpp"
 #include "iris/render/intersector.hpp"
 #include "iris/render/lights/environment.hpp"
 #include "iris/render/random.hpp"
@@ -73,17 +75,12 @@ public:
                 break;
             }
             const shape_desc& shape = m_scene.shapes[hit->shape];
-            const auto& tri = shape.mesh.triangles[hit->prim];
-            const glm::vec3 &v0 = shape.mesh.positions[tri[0]], &v1 = shape.mesh.positions[tri[1]],
-                            &v2 = shape.mesh.positions[tri[2]];
-            glm::vec3 n = glm::cross(v1 - v0, v2 - v0);
-            const float len = glm::length(n);
-            if (!(len > 0.0f)) break;
-            n /= len;
-            const glm::vec3 wo = -dir;
+            const auto si = make_interaction(m_scene, *hit, dir);
+            if (!si) break;  // degenerate triangle
+            const glm::vec3& wo = si->wo;
             if (shape.emitter) {
                 const emitter_desc& em = m_scene.emitters[*shape.emitter];
-                const float c = glm::dot(n, wo);
+                const float c = glm::dot(si->ng, wo);
                 if (c > 0.0f || (em.two_sided && c < 0.0f))
                     radiance += static_cast<double>(beta) * em.radiance(lambda);
             }
@@ -91,7 +88,7 @@ public:
             const material_desc& mat = m_scene.materials[shape.material];
             const glm::vec2 u_dir = rng.next2();  // drawn in this order since the first release
             const float u_lobe = rng.next();
-            const auto bs = bsdf_sample_hero(mat, n, wo, wl, u_lobe, u_dir);
+            const auto bs = bsdf_sample_hero(mat, si->shading, wo, wl, u_lobe, u_dir);
             if (!bs || !(bs->pdf[0] > 0.0f)) break;
             beta *= bs->f_cos[0] / bs->pdf[0];
             if (!(beta > 0.0f)) break;
@@ -100,7 +97,7 @@ public:
                 if (rng.next() >= survive) break;
                 beta /= survive;
             }
-            origin = point_on_triangle(v0, v1, v2, hit->u, hit->v).p;  // not offset: see intersect_leaving
+            origin = si->sp.p;  // not offset: see intersect_leaving
             dir = bs->wi;
             from_shape = hit->shape;
             from_prim = hit->prim;

@@ -45,6 +45,7 @@
 #include "iris/render/materials/materials.hpp"
 #include "iris/render/propagation.hpp"
 #include "iris/render/frame.hpp"
+#include "iris/render/interaction.hpp"
 #include "iris/render/intersector.hpp"
 #include "iris/render/lights.hpp"
 #include "iris/render/random.hpp"
@@ -112,16 +113,13 @@ public:
                 break;
             }
             const shape_desc& shape = m_scene.shapes[hit->shape];
-            const auto& tri = shape.mesh.triangles[hit->prim];
-            const glm::vec3 &v0 = shape.mesh.positions[tri[0]], &v1 = shape.mesh.positions[tri[1]],
-                            &v2 = shape.mesh.positions[tri[2]];
-            vertex vx{point_on_triangle(v0, v1, v2, hit->u, hit->v), hit->geometric_normal, -dir};  // Embree's Ng
-            const float ng_len = glm::length(vx.ng);
-            if (!(ng_len > 0.0f)) break;  // degenerate triangle
-            vx.ng /= ng_len;
+            const auto si = make_interaction(m_scene, *hit, dir);
+            if (!si) break;  // degenerate triangle
+            const surface_interaction& vx = *si;
 
-            if (shape.emitter) collect_emission(*hit, *shape.emitter, vx, wl, hp, bterm);  // found by BSDF sampling
+            if (shape.emitter) collect_emission(*shape.emitter, vx, wl, hp, bterm);  // found by BSDF sampling
             if (depth >= m_settings.max_depth) break;
+            const glm::vec3 lo = vx.to_local(vx.wo);  // the BxDF's ωo, in the shading frame
             // one visit: the rest of the vertex is compiled for its material's BxDF
             glm::vec3 wi;
             const bool scattered = visit_bxdf(m_scene.materials[shape.material], [&](const auto& bxdf) {
@@ -133,15 +131,15 @@ public:
                 if constexpr (B::reads_albedo) hero.reflectance = m_hero.albedo[shape.material](wl);
                 if constexpr (B::reads_eta) hero.index = detail::etas(bxdf.ior(), wl);
                 bterm.enter(bxdf, shape.material);
-                if constexpr (!B::delta) next_event(tracer, bxdf, vx, wl, hero, hp, bterm, rng, out);
+                if constexpr (!B::delta) next_event(tracer, bxdf, vx, lo, wl, hero, hp, bterm, rng, out);
                 // BSDF sampling with the hero wavelength; the bins follow it (the sample stays
                 // in here: returning it through the visit cost a copy with store-forwarding stalls)
                 const float u_lobe = rng.next();
-                const auto s = bxdf.template sample<C>(vx.ng, vx.wo, wl, u_lobe, rng.next2(), hero);
+                const auto s = bxdf.template sample<C>(lo, wl, u_lobe, rng.next2(), hero);
                 if (!s || !(s->pdf[0] > 0.0f)) return false;
-                bterm.follow(bxdf, vx.ng, vx.wo, *s);
+                bterm.follow(bxdf, lo, *s);
                 hp.scatter(*s);
-                wi = s->wi;
+                wi = glm::normalize(vx.to_world(s->wi));
                 return true;
             });
             if (!scattered) break;
@@ -170,14 +168,6 @@ private:
         if constexpr (propagates) return propagation_type(m_bins);
         else return {};
     }
-
-    /// \brief A surface point the hero path reached: the point with its error bound, the
-    /// unit geometric normal, and the direction back along the path.
-    struct vertex {
-        surface_point sp;
-        glm::vec3 ng;
-        glm::vec3 wo;
-    };
 
     /// \brief The hero path's state in ratio form (pbrt-v4's): β_k = f(λ_k)/p(x̄|λ₀),
     /// ρ_k = p(x̄|λ_k)/p(x̄|λ₀) (and before the last vertex, for the light-sampling MIS
@@ -215,12 +205,12 @@ private:
     /// \brief Emission found by BSDF sampling (or seen directly), MIS-weighted against light
     /// sampling unless the last scattering was delta.
     template <class Prop>
-    void collect_emission(const ray_hit& hit, std::uint32_t e, const vertex& vx, const sampled_wavelengths<C>& wl,
+    void collect_emission(std::uint32_t e, const surface_interaction& vx, const sampled_wavelengths<C>& wl,
                           hero_path& hp, Prop& bterm) const noexcept {
         const emitter_desc& em = m_scene.emitters[e];
         const float cos_l = glm::dot(vx.ng, vx.wo);
         if (!(em.two_sided ? cos_l != 0.0f : cos_l > 0.0f)) return;
-        const float pl = hp.prev_delta ? 0.0f : m_lights.pdf_area(hit.shape, hit.prim) * hit.t * hit.t / std::fabs(cos_l);
+        const float pl = hp.prev_delta ? 0.0f : m_lights.pdf_area(vx.shape, vx.prim) * vx.t * vx.t / std::fabs(cos_l);
         collect(emission_ref{e, 1, {1.0f, 0.0f, 0.0f}}, !hp.prev_delta, pl, wl, hp, bterm);
     }
 
@@ -245,23 +235,29 @@ private:
     /// direction toward it in solid angle, one shadow ray; the balance heuristic over C
     /// wavelengths × {BSDF, light} sampling for the hero path and the hero's two-strategy
     /// weight for the B term. A delta light (point, spot, distant) has no BSDF strategy:
-    /// its weight is over the wavelengths alone (p_b = 0 in the same formula).
+    /// its weight is over the wavelengths alone (p_b = 0 in the same formula), and the BxDF's
+    /// pdf is not evaluated. `lo` is ωo in the shading frame.
     template <Intersector Tracer, class B, class Prop>
-    void next_event(const Tracer& tracer, const B& bxdf, const vertex& vx, const sampled_wavelengths<C>& wl,
-                    const sampled_spectra<C>& hero, hero_path& hp, Prop& bterm, sample_stream& rng,
-                    path_sample& out) const noexcept {
+    void next_event(const Tracer& tracer, const B& bxdf, const surface_interaction& vx, const glm::vec3& lo,
+                    const sampled_wavelengths<C>& wl, const sampled_spectra<C>& hero, hero_path& hp, Prop& bterm,
+                    sample_stream& rng, path_sample& out) const noexcept {
         if (m_lights.empty()) return;
         const glm::vec2 u_point = rng.next2();  // slots in the order of random.hpp's layout
         const float u_choice = rng.next();
         const auto ls = m_lights.sample_li(vx.sp, vx.ng, u_choice, u_point);
         if (!ls || !(ls->pdf > 0.0f)) return;
-        const sampled_spectrum<C> f = bxdf.template f_cos<C>(vx.ng, vx.wo, ls->wi, hero);
-        bterm.prepare_light(bxdf, vx.ng, vx.wo, ls->wi);
+        const glm::vec3 li = vx.to_local(ls->wi);
+        // f·|cos| and, for a light a BSDF sample could hit, the BSDF's pdf: one evaluation
+        bsdf_value<C> fb;
+        if (ls->delta) fb.f_cos = bxdf.template f_cos<C>(lo, li, hero);
+        else fb = bxdf.template eval<C>(lo, li, hero);
+        const sampled_spectrum<C>& f = fb.f_cos;
+        bterm.prepare_light(bxdf, lo, li);
         if (f.is_zero() && !bterm.template receives_light<B>()) return;
         ++out.rays;
         if (tracer.occluded(ls->shadow.origin, ls->shadow.direction, ls->shadow.t_max)) return;
         const float pl = ls->pdf;
-        const sampled_spectrum<C> pb = ls->delta ? sampled_spectrum<C>{} : bxdf.template pdf<C>(vx.ng, vx.wo, ls->wi, hero);
+        const sampled_spectrum<C>& pb = fb.pdf;
         hp.lc += hp.beta * f * m_hero.emitted(ls->le, wl) / (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
         bterm.template light<B>(ls->le, balance_heuristic(pl, pb[0]), pl);
     }

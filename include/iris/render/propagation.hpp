@@ -44,7 +44,7 @@ struct no_propagation {
     template <class B>
     void enter(const B&, std::uint32_t) noexcept {}
     template <class B>
-    void prepare_light(const B&, const glm::vec3&, const glm::vec3&, const glm::vec3&) noexcept {}
+    void prepare_light(const B&, const glm::vec3&, const glm::vec3&) noexcept {}
     template <class B>
     static constexpr bool receives_light() noexcept {
         return false;
@@ -52,7 +52,7 @@ struct no_propagation {
     template <class B>
     void light(const emission_ref&, float, float) noexcept {}
     template <class B, std::size_t C>
-    void follow(const B&, const glm::vec3&, const glm::vec3&, const bsdf_sample<C>&) noexcept {}
+    void follow(const B&, const glm::vec3&, const bsdf_sample<C>&) noexcept {}
     static constexpr float roulette_max(float m) noexcept { return m; }
     void survive(float) noexcept {}
     void add_xyz(xyz&) const noexcept {}
@@ -91,12 +91,13 @@ public:
     }
 
     /// \brief Next-event estimation toward unit wi, before the shadow ray: the bins' value
-    /// f·|cos θi| (a separable BxDF: its reflectance times one number).
+    /// f·|cos θi| (a separable BxDF: its reflectance times one number). Directions in the
+    /// vertex's shading frame, as the BxDF takes them.
     template <class B>
-    void prepare_light(const B& bxdf, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi) noexcept {
+    void prepare_light(const B& bxdf, const glm::vec3& wo, const glm::vec3& wi) noexcept {
         if (!m_on) return;
-        if constexpr (separable_bxdf<B>) m_cos = B::cos_factor(n, wo, wi);
-        else m_f = bxdf.template f_cos<Bins>(n, wo, wi, spectra());
+        if constexpr (separable_bxdf<B>) m_cos = B::cos_factor(wo, wi);
+        else m_f = bxdf.template f_cos<Bins>(wo, wi, spectra());
     }
     /// \brief Would light from there reach B? A surface black at every hero wavelength
     /// (say, inside the windows) may still reflect at the bins, and B must keep its
@@ -117,13 +118,14 @@ public:
         else add_light(m_f, le, k);
     }
 
-    /// \brief The bins follow the hero's sampled direction and lobe.
+    /// \brief The bins follow the hero's sampled direction and lobe (`wo` and the sample's
+    /// direction in the shading frame).
     template <class B, std::size_t C>
-    void follow(const B& bxdf, const glm::vec3& n, const glm::vec3& wo, const bsdf_sample<C>& s) noexcept {
+    void follow(const B& bxdf, const glm::vec3& wo, const bsdf_sample<C>& s) noexcept {
         if (!m_on) return;
         const float inv_p0 = 1.0f / s.pdf[0];
-        if constexpr (separable_bxdf<B>) m_tb_max = scale(m_refl, B::cos_factor(n, wo, s.wi) * inv_p0);
-        else m_tb_max = scale(bxdf.template follow<Bins>(n, wo, s.wi, s.kind, spectra()), inv_p0);
+        if constexpr (separable_bxdf<B>) m_tb_max = scale(m_refl, B::cos_factor(wo, s.wi) * inv_p0);
+        else m_tb_max = scale(bxdf.template follow<Bins>(wo, s.wi, s.kind, spectra()), inv_p0);
     }
 
     /// \brief The larger of m and B's largest throughput (a NaN in B is ignored).

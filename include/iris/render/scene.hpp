@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "iris/image.hpp"
@@ -119,10 +120,15 @@ struct distant {
 /// \brief The lights that are not emissive shapes.
 using light_desc = std::variant<light::point, light::spot, light::distant>;
 
-/// \brief A triangle mesh: positions and counter-clockwise (outward) index triples.
+/// \brief A triangle mesh: positions and counter-clockwise (outward) index triples, and
+/// optionally per-vertex shading normals and texture coordinates (empty: none; otherwise
+/// one per position, checked where the ray tracer takes the mesh). The winding decides the
+/// outside; a shading normal only bends the shading frame (iris/render/interaction.hpp).
 struct triangle_mesh {
     std::vector<glm::vec3> positions;
     std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<glm::vec3> normals;  ///< empty, or one (not necessarily unit) per position
+    std::vector<glm::vec2> uvs;      ///< empty, or one per position
     std::size_t triangle_count() const noexcept { return triangles.size(); }
 };
 

@@ -182,6 +182,17 @@ unsigned scene::add_mesh(const geometry::triangle_mesh& mesh) {
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
         if (!finite(mesh.positions[i]))
             throw error("iris::embree: add_mesh: vertex " + std::to_string(i) + " is not finite");
+    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+        throw error("iris::embree: add_mesh: " + std::to_string(mesh.normals.size()) + " normals for " +
+                    std::to_string(mesh.positions.size()) + " vertices (need none or one per vertex)");
+    if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+        throw error("iris::embree: add_mesh: " + std::to_string(mesh.uvs.size()) + " uvs for " +
+                    std::to_string(mesh.positions.size()) + " vertices (need none or one per vertex)");
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i)
+        if (!finite(mesh.normals[i])) throw error("iris::embree: add_mesh: normal " + std::to_string(i) + " is not finite");
+    for (std::size_t i = 0; i < mesh.uvs.size(); ++i)
+        if (!std::isfinite(mesh.uvs[i].x) || !std::isfinite(mesh.uvs[i].y))
+            throw error("iris::embree: add_mesh: uv " + std::to_string(i) + " is not finite");
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (const std::uint32_t v : mesh.triangles[t])
             if (v >= mesh.positions.size())

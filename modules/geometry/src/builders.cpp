@@ -55,6 +55,12 @@ triangle_mesh transformed(const triangle_mesh& mesh, const glm::mat4& m) {
     out.positions.reserve(mesh.positions.size());
     for (const glm::vec3& p : mesh.positions) out.positions.emplace_back(m * glm::vec4(p, 1.0f));
     out.triangles = mesh.triangles;
+    // normals transform by the inverse transpose (they stay perpendicular to the surface);
+    // a mirror needs no flip for them, as the shading normal is turned to the winding's side
+    const glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(m)));
+    out.normals.reserve(mesh.normals.size());
+    for (const glm::vec3& n : mesh.normals) out.normals.push_back(nm * n);
+    out.uvs = mesh.uvs;
     // A mirror turns counter-clockwise into clockwise: swap two corners to stay outward.
     if (det < 0.0f)
         for (auto& t : out.triangles) std::swap(t[1], t[2]);

@@ -100,6 +100,12 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
         for (const auto& p : s.mesh.positions) h(p);
         h(s.mesh.triangles.size());
         for (const auto& t : s.mesh.triangles) h.bytes(t.data(), sizeof t);
+        if (!s.mesh.normals.empty() || !s.mesh.uvs.empty()) {  // (absent: the fingerprints of meshes without them are unchanged)
+            h(s.mesh.normals.size());
+            for (const auto& n : s.mesh.normals) h(n);
+            h(s.mesh.uvs.size());
+            for (const auto& uv : s.mesh.uvs) h.bytes(&uv, sizeof uv);
+        }
         h(s.material);
         h(s.emitter.has_value());
         h(s.emitter.value_or(0));

@@ -5,8 +5,9 @@
 /// lists them and maps a scene's `material_desc` to one (`visit_bxdf`).
 ///
 /// A BxDF is a small value type made at a vertex from its material's data. Directions are
-/// world-space unit vectors pointing away from the surface, `n` is the (outward) geometric
-/// normal, and every call takes the material's spectra at the wavelengths being evaluated
+/// unit vectors pointing away from the surface, in the vertex's shading frame, whose normal
+/// is +z (`surface_interaction::shading`, iris/render/interaction.hpp: the frame is built
+/// once per vertex, not per call), and every call takes the material's spectra at the wavelengths being evaluated
 /// from a *spectra source* `S` (below). The same templates serve the C hero-rotated
 /// wavelengths (N = C) and the B term's bins (N = bins), so the B term is one vectorised
 /// call per vertex, not a loop of scalar material calls. The members (`bxdf` checks them):
@@ -15,10 +16,11 @@
 /// |---|---|
 /// | `delta` | a delta BSDF (mirror, smooth glass): no `f_cos`/`pdf` for a given ωi, no light sampling |
 /// | `reads_albedo`, `reads_eta` | which spectra it reads: `reflectance()` or `ior()` then exist |
-/// | `f_cos<N>(n, wo, wi, s)` | f(ωo, ωi, λ_k)·\|cos θi\| (0 for delta BxDFs) |
-/// | `pdf<N>(n, wo, wi, s)` | p(ωi \| ωo, λ_k), solid angle (0 for delta BxDFs) |
-/// | `sample<N>(n, wo, wl, u_lobe, u, s)` | a direction for the hero λ₀ = wl[0], with f·\|cos\| and pdf of every λ_k along it |
-/// | `follow<M>(n, wo, wi, kind, s)` | the weight of M other wavelengths (the bins) that follow the hero's direction and lobe |
+/// | `f_cos<N>(wo, wi, s)` | f(ωo, ωi, λ_k)·\|cos θi\| (0 for delta BxDFs) |
+/// | `pdf<N>(wo, wi, s)` | p(ωi \| ωo, λ_k), solid angle (0 for delta BxDFs) |
+/// | `eval<N>(wo, wi, s)` | both at once (`bsdf_value`), sharing what they have in common |
+/// | `sample<N>(wo, wl, u_lobe, u, s)` | a direction for the hero λ₀ = wl[0], with f·\|cos\| and pdf of every λ_k along it |
+/// | `follow<M>(wo, wi, kind, s)` | the weight of M other wavelengths (the bins) that follow the hero's direction and lobe |
 ///
 /// Sampling is driven by the hero alone. A sample reports, for every λ_k, f(λ_k)·|cos θi|
 /// along the hero's direction and the pdf p(ωi | λ_k) that λ_k would have had of producing
@@ -30,7 +32,7 @@
 /// ones — treating λ_b as if it took the hero's refracted direction is the method's (only)
 /// bias (SPEC §3).
 ///
-/// A BxDF whose value factors as f(λ)·|cos θi| = R(λ)·g(ωo, ωi) also has `cos_factor(n, wo,
+/// A BxDF whose value factors as f(λ)·|cos θi| = R(λ)·g(ωo, ωi) also has `cos_factor(wo,
 /// wi)` = g (`separable_bxdf`): the B term then multiplies its 80 bins by R once and by
 /// one number per direction, not by an 80-wide product.
 ///
@@ -56,9 +58,15 @@ namespace iris {
 /// \brief Which lobe a sample took; the B term follows the hero's choice at delta events.
 enum class lobe : unsigned char { diffuse, reflection, transmission };
 
+/// \brief f(ωo, ωi, λ_k)·|cos θi| and p(ωi | ωo, λ_k) of one pair of directions.
+template <std::size_t N>
+struct bsdf_value {
+    sampled_spectrum<N> f_cos, pdf;
+};
+
 template <std::size_t N>
 struct bsdf_sample {
-    glm::vec3 wi{0.0f};
+    glm::vec3 wi{0.0f};         ///< in the shading frame, as the BxDF's arguments
     sampled_spectrum<N> f_cos;  ///< f(ωo, ωi, λ_k)·|cos θi|, or the discrete weight of a delta lobe
     sampled_spectrum<N> pdf;    ///< p(ωi | ωo, λ_k) (solid angle), or a discrete probability
     lobe kind = lobe::diffuse;
@@ -104,16 +112,17 @@ concept bxdf = requires(const B& b, const glm::vec3& v, const sampled_wavelength
     { B::delta } -> std::convertible_to<bool>;
     { B::reads_albedo } -> std::convertible_to<bool>;
     { B::reads_eta } -> std::convertible_to<bool>;
-    { b.template f_cos<4>(v, v, v, s) } -> std::same_as<sampled_spectrum<4>>;
-    { b.template pdf<4>(v, v, v, s) } -> std::same_as<sampled_spectrum<4>>;
-    { b.template sample<4>(v, v, wl, u1, u2, s) } -> std::same_as<std::optional<bsdf_sample<4>>>;
-    { b.template follow<4>(v, v, v, kind, s) } -> std::same_as<sampled_spectrum<4>>;
+    { b.template f_cos<4>(v, v, s) } -> std::same_as<sampled_spectrum<4>>;
+    { b.template pdf<4>(v, v, s) } -> std::same_as<sampled_spectrum<4>>;
+    { b.template eval<4>(v, v, s) } -> std::same_as<bsdf_value<4>>;
+    { b.template sample<4>(v, wl, u1, u2, s) } -> std::same_as<std::optional<bsdf_sample<4>>>;
+    { b.template follow<4>(v, v, kind, s) } -> std::same_as<sampled_spectrum<4>>;
 };
 
-/// \brief A BxDF whose f·|cos θi| is its reflectance times `cos_factor(n, wo, wi)`.
+/// \brief A BxDF whose f·|cos θi| is its reflectance times `cos_factor(wo, wi)`.
 template <class B>
 concept separable_bxdf = bxdf<B> && B::reads_albedo && requires(const glm::vec3& v) {
-    { B::cos_factor(v, v, v) } -> std::same_as<float>;
+    { B::cos_factor(v, v) } -> std::same_as<float>;
 };
 
 /// \brief The common part of the delta BxDFs (mirror, smooth glass): no density for a
@@ -122,11 +131,15 @@ struct delta_bxdf {
     static constexpr bool delta = true;
 
     template <std::size_t N, class S>
-    sampled_spectrum<N> f_cos(const glm::vec3&, const glm::vec3&, const glm::vec3&, const S&) const noexcept {
+    sampled_spectrum<N> f_cos(const glm::vec3&, const glm::vec3&, const S&) const noexcept {
         return {};
     }
     template <std::size_t N, class S>
-    sampled_spectrum<N> pdf(const glm::vec3&, const glm::vec3&, const glm::vec3&, const S&) const noexcept {
+    sampled_spectrum<N> pdf(const glm::vec3&, const glm::vec3&, const S&) const noexcept {
+        return {};
+    }
+    template <std::size_t N, class S>
+    bsdf_value<N> eval(const glm::vec3&, const glm::vec3&, const S&) const noexcept {
         return {};
     }
 };

@@ -29,10 +29,10 @@ struct specular_conductor : delta_bxdf {
     const tabulated_spectrum& reflectance() const noexcept { return data.reflectance; }
 
     template <std::size_t N, class S>
-    std::optional<bsdf_sample<N>> sample(const glm::vec3& n, const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/,
-                                         float /*u_lobe*/, glm::vec2 /*u*/, const S& s) const noexcept {
+    std::optional<bsdf_sample<N>> sample(const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/, float /*u_lobe*/,
+                                         glm::vec2 /*u*/, const S& s) const noexcept {
         bsdf_sample<N> out;
-        out.wi = reflect_about(wo, n);
+        out.wi = {-wo.x, -wo.y, wo.z};  // the mirror about the local normal
         out.f_cos = sampled_spectrum<N>(s.albedo());
         out.pdf = sampled_spectrum<N>(1.0f);
         out.kind = lobe::reflection;
@@ -41,7 +41,7 @@ struct specular_conductor : delta_bxdf {
     }
 
     template <std::size_t M, class S>
-    sampled_spectrum<M> follow(const glm::vec3&, const glm::vec3&, const glm::vec3&, lobe, const S& s) const noexcept {
+    sampled_spectrum<M> follow(const glm::vec3&, const glm::vec3&, lobe, const S& s) const noexcept {
         return sampled_spectrum<M>(s.albedo());
     }
 };

@@ -30,35 +30,39 @@ struct lambertian {
     const tabulated_spectrum& reflectance() const noexcept { return data.reflectance; }
 
     /// \brief |cos θi|/π on ωo's side of the surface, 0 across it.
-    static float cos_factor(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi) noexcept {
-        const float co = glm::dot(n, wo), ci = glm::dot(n, wi);
-        return co * ci > 0.0f ? std::fabs(ci) * detail::inv_pi : 0.0f;
+    static float cos_factor(const glm::vec3& wo, const glm::vec3& wi) noexcept {
+        return wo.z * wi.z > 0.0f ? std::fabs(wi.z) * detail::inv_pi : 0.0f;
     }
 
     template <std::size_t N, class S>
-    sampled_spectrum<N> f_cos(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
-        const float c = cos_factor(n, wo, wi);
+    sampled_spectrum<N> f_cos(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        const float c = cos_factor(wo, wi);
         if (c == 0.0f) return {};
         return sampled_spectrum<N>(s.albedo()) * c;
     }
 
     template <std::size_t N, class S>
-    sampled_spectrum<N> pdf(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& /*s*/) const noexcept {
-        return sampled_spectrum<N>(cos_factor(n, wo, wi));
+    sampled_spectrum<N> pdf(const glm::vec3& wo, const glm::vec3& wi, const S& /*s*/) const noexcept {
+        return sampled_spectrum<N>(cos_factor(wo, wi));
     }
 
     template <std::size_t N, class S>
-    std::optional<bsdf_sample<N>> sample(const glm::vec3& n, const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/,
-                                         float /*u_lobe*/, glm::vec2 u, const S& s) const noexcept {
-        const float co = glm::dot(n, wo);
-        if (co == 0.0f) return std::nullopt;
+    bsdf_value<N> eval(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        const float c = cos_factor(wo, wi);
+        if (c == 0.0f) return {};
+        return {sampled_spectrum<N>(s.albedo()) * c, sampled_spectrum<N>(c)};
+    }
+
+    template <std::size_t N, class S>
+    std::optional<bsdf_sample<N>> sample(const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/, float /*u_lobe*/,
+                                         glm::vec2 u, const S& s) const noexcept {
+        if (wo.z == 0.0f) return std::nullopt;
         // cosine-weighted hemisphere on wo's side (Malley: concentric disk → lift)
         const float r = std::sqrt(u.x), phi = 2.0f * std::numbers::pi_v<float> * u.y;
         const float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u.x));
-        const frame fr = frame::from_normal(co > 0.0f ? n : -n);
-        bsdf_sample<N> out;
-        out.wi = glm::normalize(fr.to_world({x, y, z}));
         if (!(z > 0.0f)) return std::nullopt;
+        bsdf_sample<N> out;
+        out.wi = {x, y, wo.z > 0.0f ? z : -z};
         out.f_cos = sampled_spectrum<N>(s.albedo()) * (z * detail::inv_pi);
         out.pdf = sampled_spectrum<N>(z * detail::inv_pi);
         out.kind = lobe::diffuse;
@@ -66,9 +70,8 @@ struct lambertian {
     }
 
     template <std::size_t M, class S>
-    sampled_spectrum<M> follow(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, lobe /*kind*/,
-                               const S& s) const noexcept {
-        return f_cos<M>(n, wo, wi, s);
+    sampled_spectrum<M> follow(const glm::vec3& wo, const glm::vec3& wi, lobe /*kind*/, const S& s) const noexcept {
+        return f_cos<M>(wo, wi, s);
     }
 };
 

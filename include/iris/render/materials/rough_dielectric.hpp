@@ -33,21 +33,34 @@ struct rough_dielectric {
     detail::ggx distribution() const noexcept { return {data.roughness}; }
 
     template <std::size_t N, class S>
-    sampled_spectrum<N> f_cos(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
-        return each<N>(n, wo, wi, s, &detail::rough_value::f_cos);
+    sampled_spectrum<N> f_cos(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        return eval<N>(wo, wi, s).f_cos;
     }
 
     template <std::size_t N, class S>
-    sampled_spectrum<N> pdf(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
-        return each<N>(n, wo, wi, s, &detail::rough_value::pdf);
+    sampled_spectrum<N> pdf(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        return eval<N>(wo, wi, s).pdf;
+    }
+
+    /// \brief f·|cos θi| and pdf from one evaluation of the microfacet terms per wavelength.
+    template <std::size_t N, class S>
+    bsdf_value<N> eval(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        const detail::ggx m = distribution();
+        const auto& e = s.eta();
+        bsdf_value<N> out;
+        for (std::size_t k = 0; k < N; ++k) {
+            const auto v = detail::rough_dielectric_value(m, wo, wi, e[k]);
+            out.f_cos[k] = v.f_cos;
+            out.pdf[k] = v.pdf;
+        }
+        return out;
     }
 
     template <std::size_t N, class S>
-    std::optional<bsdf_sample<N>> sample(const glm::vec3& n, const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/,
-                                         float u_lobe, glm::vec2 u, const S& s) const noexcept {
+    std::optional<bsdf_sample<N>> sample(const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/, float u_lobe,
+                                         glm::vec2 u, const S& s) const noexcept {
         const auto& eta = s.eta();
-        const frame fr = frame::from_normal(n);
-        const glm::vec3 lo = fr.to_local(wo);
+        const glm::vec3 lo = wo;
         if (lo.z == 0.0f) return std::nullopt;
         const detail::ggx m = distribution();
         const glm::vec3 wm = m.sample_visible(lo, u);
@@ -65,7 +78,7 @@ struct rough_dielectric {
             out.kind = lobe::transmission;
             out.eta = lo.z > 0.0f ? eta[0] : 1.0f / eta[0];
         }
-        out.wi = fr.to_world(li);
+        out.wi = li;
         for (std::size_t k = 0; k < N; ++k) {
             const auto v = detail::rough_dielectric_value(m, lo, li, eta[k]);
             out.f_cos[k] = v.f_cos;
@@ -76,23 +89,8 @@ struct rough_dielectric {
     }
 
     template <std::size_t M, class S>
-    sampled_spectrum<M> follow(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, lobe /*kind*/,
-                               const S& s) const noexcept {
-        return f_cos<M>(n, wo, wi, s);
-    }
-
-private:
-    /// One field of `rough_dielectric_value` at each of the N wavelengths.
-    template <std::size_t N, class S>
-    sampled_spectrum<N> each(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const S& s,
-                             float detail::rough_value::*field) const noexcept {
-        const frame fr = frame::from_normal(n);
-        const glm::vec3 lo = fr.to_local(wo), li = fr.to_local(wi);
-        const detail::ggx m = distribution();
-        const auto& e = s.eta();
-        sampled_spectrum<N> out;
-        for (std::size_t k = 0; k < N; ++k) out[k] = detail::rough_dielectric_value(m, lo, li, e[k]).*field;
-        return out;
+    sampled_spectrum<M> follow(const glm::vec3& wo, const glm::vec3& wi, lobe /*kind*/, const S& s) const noexcept {
+        return f_cos<M>(wo, wi, s);
     }
 };
 

@@ -33,23 +33,23 @@ struct smooth_dielectric : delta_bxdf {
     const ior_model& ior() const noexcept { return data.ior; }
 
     template <std::size_t N, class S>
-    std::optional<bsdf_sample<N>> sample(const glm::vec3& n, const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/,
-                                         float u_lobe, glm::vec2 /*u*/, const S& s) const noexcept {
+    std::optional<bsdf_sample<N>> sample(const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/, float u_lobe,
+                                         glm::vec2 /*u*/, const S& s) const noexcept {
         const auto& eta = s.eta();
         const bool dispersive = is_dispersive(data.ior);
-        const float co = glm::dot(n, wo);
+        const float co = wo.z;
         sampled_spectrum<N> fr;
         for (std::size_t k = 0; k < N; ++k) fr[k] = detail::fresnel_dielectric(co, eta[k]);
         bsdf_sample<N> out;
         out.delta = true;
         if (u_lobe < fr[0]) {
-            out.wi = reflect_about(wo, n);
+            out.wi = {-wo.x, -wo.y, wo.z};
             out.kind = lobe::reflection;
             out.f_cos = fr;
             out.pdf = fr;  // had λ_k been the hero, it would have reflected with probability F(λ_k)
             return out;
         }
-        const auto t = detail::refract(wo, n, eta[0]);
+        const auto t = detail::refract(wo, {0.0f, 0.0f, 1.0f}, eta[0]);
         if (!t) return std::nullopt;  // unreachable: TIR means F = 1
         out.wi = t->wt;
         out.kind = lobe::transmission;
@@ -64,9 +64,8 @@ struct smooth_dielectric : delta_bxdf {
     }
 
     template <std::size_t M, class S>
-    sampled_spectrum<M> follow(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& /*wi*/, lobe kind,
-                               const S& s) const noexcept {
-        return detail::fresnel_follow<M>(glm::dot(n, wo), kind, s.eta2(), s.inv_eta2());
+    sampled_spectrum<M> follow(const glm::vec3& wo, const glm::vec3& /*wi*/, lobe kind, const S& s) const noexcept {
+        return detail::fresnel_follow<M>(wo.z, kind, s.eta2(), s.inv_eta2());
     }
 };
 
