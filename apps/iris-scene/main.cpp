@@ -59,9 +59,15 @@ loaded load(const std::string& name_or_path) {
     }
 }
 
-std::string material_summary(const iris::material_desc& m) {
+std::string material_summary(const iris::scene_desc& s, const iris::material_desc& m) {
     struct summary {  // one call per alternative: a new material does not compile without its own
-        std::string operator()(const iris::material::diffuse&) const { return "diffuse"; }
+        const iris::scene_desc& s;
+        std::string operator()(const iris::material::diffuse& d) const {
+            if (!d.texture) return "diffuse";
+            const auto& t = s.textures[*d.texture];
+            const char* wrap = t.wrap == iris::texture_wrap::repeat ? "repeat" : t.wrap == iris::texture_wrap::clamp ? "clamp" : "mirror";
+            return fmt::format("diffuse texture={} {}x{} wrap={}", t.file, t.width, t.height, wrap);
+        }
         std::string operator()(const iris::material::conductor&) const { return "conductor"; }
         std::string operator()(const iris::material::dielectric& d) const {
             const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"
@@ -72,7 +78,7 @@ std::string material_summary(const iris::material_desc& m) {
                                d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"));
         }
     };
-    return std::visit(summary{}, m);
+    return std::visit(summary{s}, m);
 }
 
 std::string light_summary(const iris::light_desc& l) {
@@ -176,7 +182,7 @@ void info(const std::string& name, bool json) {
         j["shapes"] = s.shapes.size();
         j["materials"] = nlohmann::ordered_json::array();
         for (std::size_t i = 0; i < s.materials.size(); ++i)
-            j["materials"].push_back({{"name", s.material_names[i]}, {"type", material_summary(s.materials[i])}});
+            j["materials"].push_back({{"name", s.material_names[i]}, {"type", material_summary(s, s.materials[i])}});
         j["emitters"] = s.emitters.size();
         j["emitter_list"] = nlohmann::ordered_json::array();
         for (std::size_t i = 0; i < s.emitters.size(); ++i)
@@ -214,7 +220,7 @@ void info(const std::string& name, bool json) {
     fmt::print("triangles    {} in {} shapes\n", s.triangle_count(), s.shapes.size());
     fmt::print("materials    {}\n", s.materials.size());
     for (std::size_t i = 0; i < s.materials.size(); ++i)
-        fmt::print("  {:<14} {}\n", s.material_names[i], material_summary(s.materials[i]));
+        fmt::print("  {:<14} {}\n", s.material_names[i], material_summary(s, s.materials[i]));
     fmt::print("emitters     {}\n", s.emitters.size());
     for (std::size_t i = 0; i < s.emitters.size(); ++i)
         fmt::print("  {:<14} {} luminance={:g} power={:g} area={:g} shapes={}{}\n", l.doc.emitters[i].name,

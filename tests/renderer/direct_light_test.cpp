@@ -86,6 +86,7 @@ iris::scene_desc make_scene(const lamp& l) {
     auto& m = s.shapes[1].mesh;
     m.positions.clear();
     m.triangles.clear();
+    m.uvs.clear();  // the quad's texture coordinates belong to its four vertices
     for (const auto& c : l.corners) m.positions.emplace_back(c);
     for (std::uint32_t i = 1; i + 1 < l.corners.size(); ++i) m.triangles.push_back({0, i, i + 1});
     return s;

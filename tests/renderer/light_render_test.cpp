@@ -1,5 +1,6 @@
 // The lights of the open scene model rendered end to end against closed forms (every
-// preset), and the environment image against the second, independent estimator.
+// preset), and the environment image against the second, independent estimator; then
+// image textures likewise (at the end of the file).
 //
 // - A flat diffuse plane (reflectance ρ, nothing above it) under an environment of constant
 //   radiance L reflects exactly ρL in every direction, given as a constant `spd` or as an
@@ -32,6 +33,7 @@
 #include <iris/renderer/renderer.hpp>
 #include <iris/scene/scene.hpp>
 #include <iris/spectrum/color.hpp>
+#include <iris/spectrum/rgb_upsampling.hpp>
 
 #include "region_stats.hpp"
 
@@ -412,4 +414,154 @@ TEST(LightRender, BsdfOnlyAgreesWithNeeMisUnderAnEnvironmentImage) {
                     mapping.c_str(), worst, z_max, 100.0 * detectable);
         EXPECT_LE(detectable, 0.02) << mapping << ": the test has lost its power";
     }
+}
+
+// ---- textures --------------------------------------------------------------------------
+
+namespace {
+
+/// \brief XYZ of the reflectance of texture weights `w` (the analytic basis) times the
+/// spectrum `l`, over the scene's domain, Y-normalised as the film is.
+std::array<double, 3> textured_xyz(const glm::dvec3& w, const iris::tabulated_spectrum& l, const iris::scene_desc& d) {
+    std::array<double, 3> v{};
+    const double step = 0.05;
+    for (double x = d.lambda_min + 0.5 * step; x < d.lambda_max; x += step) {
+        const double r = w.x * iris::rgb_upsampling::red_basis(x) + w.y * iris::rgb_upsampling::green_basis(x) +
+                         w.z * iris::rgb_upsampling::blue_basis(x);
+        const double e = r * l(static_cast<float>(x)) * step;
+        v[0] += e * iris::cie::x_bar(x);
+        v[1] += e * iris::cie::y_bar(x);
+        v[2] += e * iris::cie::z_bar(x);
+    }
+    for (auto& c : v) c /= iris::cie::y_integral;
+    return v;
+}
+
+}  // namespace
+
+// A flat textured plane seen from straight above under a constant environment reflects
+// ρ(uv)·L exactly. The texture is 4 × 4 texels in four 2 × 2 blocks of one colour each
+// (clamped), so bilinear filtering is exact wherever both neighbours are in one block:
+// u, v < 3/8 or > 5/8. The camera sees uv ∈ [0.025, 0.975]², so the corner regions of a
+// 4 × 4 grid of the image lie inside the four blocks. Each must equal the XYZ of its
+// block's colour (linear sRGB → basis weights → spectrum) times L: every preset, the
+// hero's basis rows and the B term's mixed bins alike; the colours are chosen apart so a
+// texture read upside down, mirrored or in the wrong channel order fails. 40 × 40 pixels:
+// 10 × 10 per corner region, for a 2 % power on every region's Y. Family: presets × 4
+// corner regions × 3 channels, α = 0.001.
+TEST(TextureRender, EveryPresetReflectsEachTexelColourExactly) {
+    temp_dir dir("iris-texture-render");
+    const std::array<iris::rgb_pixel, 4> block = {iris::rgb_pixel{0.8f, 0.2f, 0.1f}, iris::rgb_pixel{0.1f, 0.7f, 0.2f},
+                                                  iris::rgb_pixel{0.2f, 0.3f, 0.9f}, iris::rgb_pixel{0.9f, 0.9f, 0.6f}};
+    // block index: top-left 0, top-right 1, bottom-left 2, bottom-right 3 (row 0 at the top)
+    write_map(dir.path / "blocks.exr", 4, 4, [&](int x, int y) { return block[static_cast<std::size_t>((y / 2) * 2 + x / 2)]; });
+    const double fov = 2.0 * std::atan(0.95 / 3.0) * 180.0 / std::numbers::pi;  // height 3 sees [−0.95, 0.95]²
+    const std::string json = R"({"camera": {"position": [0, 3, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": )" +
+                             std::to_string(fov) + R"(, "resolution": [40, 40]},
+      "materials": {"t": {"type": "diffuse", "reflectance": {"texture": "blocks.exr", "wrap": "clamp"}}},
+      "environment": {"spd": "D65", "luminance": 0.8},
+      "shapes": [{"type": "quad", "size": [2, 2], "material": "t"}]})";
+    const auto s = iris::scene::parse_scene(json, "light_render_test", dir.path);
+    ASSERT_EQ(s.textures.size(), 1u);
+    const auto runs = every_preset(16, 1024, 33);
+    const double z_max = iris_test::sidak_z(0.001, runs.size() * 4 * 3);
+    std::printf("threshold |z| <= %.2f\n", z_max);
+    // the 4 × 4 grid's corners: regions 0, 3, 12, 15 ↔ blocks 0, 1, 2, 3
+    const std::array<std::size_t, 4> corner = {0, 3, 12, 15};
+    std::vector<std::array<double, 3>> want(4);
+    for (std::size_t b = 0; b < 4; ++b) {
+        const auto c = iris::upsample_linear_srgb({block[b].r, block[b].g, block[b].b});
+        want[b] = textured_xyz({c.red, c.green, c.blue}, s.environment->radiance, s);
+    }
+    double power = 0.0;
+    for (const auto& run : runs) {
+        const auto all = iris_test::grid_estimates(s, run.opt, 4, 4, run.from);
+        std::vector<iris_test::region_estimate> est;
+        for (auto r : corner) est.push_back(all[r]);
+        power = std::max(power, check(est, want, z_max, "textured plane, " + run.name));
+    }
+    report_power(power, 0.02);
+}
+
+// A uniform texture is its colour as a constant reflectance, image for image: the same
+// seed gives the same paths, and the two reflectances differ only by the rounding of the
+// basis mix (≤ 1e-6 relative), so the images' means agree to 1e-4 for every preset.
+TEST(TextureRender, AUniformTextureIsItsConstantReflectance) {
+    temp_dir dir("iris-texture-uniform");
+    write_map(dir.path / "grey.exr", 3, 5, [](int, int) { return iris::rgb_pixel{0.4f, 0.5f, 0.3f}; });
+    const auto scene = [&](const std::string& reflectance) {
+        return iris::scene::parse_scene(R"({"camera": {"position": [0, 1.5, 2.5], "look_at": [0, 0.2, 0], "fov": 50, "resolution": [16, 16]},
+          "materials": {"t": {"type": "diffuse", "reflectance": )" + reflectance + R"(}, "g": {"type": "dielectric", "ior": "N-BK7"}},
+          "emitters": {"lamp": {"spd": "D65", "luminance": 20}},
+          "environment": {"spd": "D65", "luminance": 0.3},
+          "shapes": [{"type": "quad", "size": [4, 4], "material": "t"},
+                     {"type": "cube", "size": 0.5, "material": "g", "transform": [{"translate": [0, 0.25, 0]}]},
+                     {"type": "quad", "size": [0.4, 0.4], "material": "t", "emitter": "lamp", "flip": true,
+                      "transform": [{"translate": [0, 1.5, 0]}]}]})",
+                                       "light_render_test", dir.path);
+    };
+    const auto textured = scene(R"({"texture": "grey.exr"})");
+    const auto constant = scene(R"({"linear_srgb": [0.4, 0.5, 0.3]})");
+    for (const auto& p : iris::renderer::presets()) {
+        iris::renderer::options o;
+        o.preset = p.name;
+        o.spp = 8;
+        o.nthold = 16;
+        o.seed = 5;
+        iris::film a(1, 1), b(1, 1);
+        (void)iris::renderer::render(textured, o, a);
+        (void)iris::renderer::render(constant, o, b);
+        double ma = 0.0, mb = 0.0;
+        for (std::size_t i = 0; i < static_cast<std::size_t>(a.width() * a.height()); ++i) {
+            ma += a.mean(i).y;
+            mb += b.mean(i).y;
+        }
+        EXPECT_GT(mb, 0.0) << p.name;
+        EXPECT_NEAR(ma / mb, 1.0, 1e-4) << p.name;
+    }
+}
+
+// The independent estimator (its texture lookup's spectrum from the analytic basis, not
+// the integrator's tables) against the path tracer on a textured floor under a sky and a
+// glass cube: a checkerboard of 8 × 8 texels repeated twice, so regions see several
+// colours and the bilinear edges. Family: 16 regions × 3 channels, α = 0.001.
+TEST(TextureRender, BsdfOnlyAgreesWithNeeMisOnATexturedFloor) {
+    temp_dir dir("iris-texture-bsdf-only");
+    write_map(dir.path / "checker.exr", 8, 8, [](int x, int y) {
+        return ((x + y) % 2) ? iris::rgb_pixel{0.9f, 0.6f, 0.1f} : iris::rgb_pixel{0.1f, 0.3f, 0.8f};
+    });
+    const auto s = iris::scene::parse_scene(R"({"camera": {"position": [0, 1.6, 2.4], "look_at": [0, 0.2, 0], "fov": 50, "resolution": [32, 32]},
+      "materials": {"t": {"type": "diffuse", "reflectance": {"texture": "checker.exr", "wrap": "mirror"}},
+                    "g": {"type": "dielectric", "ior": "N-BK7"}},
+      "environment": {"spd": "D65", "luminance": 1.0},
+      "shapes": [{"type": "quad", "size": [4, 4], "material": "t", "transform": [{"scale": [1, 1, 1]}]},
+                 {"type": "cube", "size": 0.5, "material": "g", "transform": [{"translate": [-0.4, 0.25, 0]}]}]})",
+                                            "light_render_test", dir.path);
+    iris::renderer::options a, b;
+    a.preset = b.preset = "hwss";
+    a.estimator = "nee-mis";
+    b.estimator = "bsdf-only";
+    a.spp = 512;
+    b.spp = 4096;
+    a.seed = 43;
+    b.seed = 44;
+    const auto ea = iris_test::grid_estimates(s, a, 4, 4), eb = iris_test::grid_estimates(s, b, 4, 4);
+    const double z_max = iris_test::sidak_z(0.001, 16 * 3);
+    double worst = 0.0, mean = 0.0, var = 0.0;
+    for (std::size_t r = 0; r < ea.size(); ++r) {
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double se = std::hypot(ea[r].se[c], eb[r].se[c]);
+            const double z = (ea[r].mean[c] - eb[r].mean[c]) / se;
+            worst = std::max(worst, std::fabs(z));
+            EXPECT_LE(std::fabs(z), z_max) << "region " << r << " channel " << "XYZ"[c];
+        }
+        std::printf("region %2zu: Y nee-mis %.5f ± %.5f, bsdf-only %.5f ± %.5f\n", r, ea[r].mean[1], ea[r].se[1],
+                    eb[r].mean[1], eb[r].se[1]);
+        mean += eb[r].mean[1] / 16.0;
+        var += (ea[r].se[1] * ea[r].se[1] + eb[r].se[1] * eb[r].se[1]) / 256.0;
+    }
+    const double detectable = (z_max + 1.2816) * std::sqrt(var) / mean;
+    std::printf("max |z| %.2f (threshold %.2f); detects a %.1f %% difference of the image's Y with 90 %% power\n", worst,
+                z_max, 100.0 * detectable);
+    EXPECT_LE(detectable, 0.02) << "the test has lost its power";
 }

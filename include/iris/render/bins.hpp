@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -34,6 +35,7 @@
 #include "iris/render/lights/light.hpp"
 #include "iris/render/materials/materials.hpp"
 #include "iris/render/scene.hpp"
+#include "iris/render/texture.hpp"
 #include "iris/sampling/bias/bin_layout.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/data/cie1931.hpp"
@@ -268,24 +270,38 @@ inline std::vector<const tabulated_spectrum*> emission_spectra(const scene_desc&
     return out;
 }
 
+/// \brief Whether any material of the scene reads a texture (its tables then carry the
+/// three reflectance basis rows after the materials').
+inline bool has_textures(const scene_desc& scene) noexcept {
+    return std::any_of(scene.materials.begin(), scene.materials.end(), [](const material_desc& m) { return is_textured(m); });
+}
+
+/// \brief A material's reflectance at a hit, in `emission_ref`'s form over the albedo
+/// tables: material m's own table times 1 (untextured), or the three basis rows (which
+/// follow the materials' rows) mixed by the texture's weights there.
+inline emission_ref albedo_ref(std::uint32_t m, std::uint32_t basis_first, const std::optional<glm::vec3>& texel) noexcept {
+    if (!texel) return {m, 1, {1.0f, 0.0f, 0.0f}};
+    return {basis_first, 3, *texel};
+}
+
 /// \brief The spectra the hero wavelengths read at every vertex, as `lattice_spectrum`s:
-/// per material its reflectance (if its BxDF `reads_albedo`; none otherwise), and the
-/// emission tables (`emission_spectra`).
+/// per material its reflectance (if its BxDF `reads_albedo`; none otherwise), then the
+/// three reflectance basis spectra if a material is textured; and the emission tables
+/// (`emission_spectra`).
 struct hero_tables {
     std::vector<lattice_spectrum> albedo;
     std::vector<lattice_spectrum> emission;
+    std::uint32_t albedo_basis = 0;  ///< the first basis row of `albedo` (= the material count)
 
     /// \brief Le(λ_k) = Σ_i weight_i · table_{first+i}(λ_k) (an emitter: its table times 1, exactly).
     template <std::size_t N>
     sampled_spectrum<N> emitted(const emission_ref& r, const sampled_wavelengths<N>& wl) const noexcept {
-        sampled_spectrum<N> v = emission[r.first](wl);
-        if (r.count == 1) {
-            if (r.weight[0] != 1.0f) v *= r.weight[0];
-            return v;
-        }
-        v *= r.weight[0];
-        for (std::uint32_t i = 1; i < r.count; ++i) v += emission[r.first + i](wl) * r.weight[static_cast<int>(i)];
-        return v;
+        return mix(emission, r, wl);
+    }
+    /// \brief The reflectance at the hero wavelengths (`albedo_ref`).
+    template <std::size_t N>
+    sampled_spectrum<N> reflectance(const emission_ref& r, const sampled_wavelengths<N>& wl) const noexcept {
+        return mix(albedo, r, wl);
     }
 
     hero_tables() = default;
@@ -296,7 +312,24 @@ struct hero_tables {
                 if constexpr (std::remove_cvref_t<decltype(b)>::reads_albedo) albedo.emplace_back(b.reflectance(), lo, hi);
                 else albedo.emplace_back();
             });
+        albedo_basis = static_cast<std::uint32_t>(albedo.size());
+        if (has_textures(scene))
+            for (const tabulated_spectrum& b : reflectance_basis()) albedo.emplace_back(b, lo, hi);
         for (const tabulated_spectrum* e : emission_spectra(scene)) emission.emplace_back(*e, lo, hi);
+    }
+
+private:
+    template <std::size_t N>
+    static sampled_spectrum<N> mix(const std::vector<lattice_spectrum>& t, const emission_ref& r,
+                                   const sampled_wavelengths<N>& wl) noexcept {
+        sampled_spectrum<N> v = t[r.first](wl);
+        if (r.count == 1) {
+            if (r.weight[0] != 1.0f) v *= r.weight[0];
+            return v;
+        }
+        v *= r.weight[0];
+        for (std::uint32_t i = 1; i < r.count; ++i) v += t[r.first + i](wl) * r.weight[static_cast<int>(i)];
+        return v;
     }
 };
 
@@ -308,7 +341,7 @@ struct bin_tables {
     using spectrum = binned_spectrum<Bins>;
 
     bin_lattice<Bins> lattice;
-    std::vector<spectrum> albedo;  ///< per material; empty unless its BxDF reads_albedo
+    std::vector<spectrum> albedo;  ///< per material (empty unless its BxDF reads_albedo), then the reflectance basis if textured
     std::vector<spectrum> eta;     ///< per material; empty unless its BxDF reads_eta
     std::vector<spectrum> eta2;     ///< η², likewise (Fresnel at the bins reads η² and 1/η², no squaring or division)
     std::vector<spectrum> inv_eta2; ///< 1/η², likewise
@@ -337,6 +370,8 @@ struct bin_tables {
                     inv_eta2.emplace_back();
                 }
             });
+        if (has_textures(scene))
+            for (const tabulated_spectrum& b : reflectance_basis()) albedo.emplace_back(lattice, b);
         for (const tabulated_spectrum* e : emission_spectra(scene)) emission.emplace_back(lattice, *e);
     }
 };

@@ -40,6 +40,7 @@
 #include "iris/render/lights/environment.hpp"
 #include "iris/render/random.hpp"
 #include "iris/render/scene.hpp"
+#include "iris/render/texture.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/sampled.hpp"
 
@@ -88,7 +89,7 @@ public:
             const material_desc& mat = m_scene.materials[shape.material];
             const glm::vec2 u_dir = rng.next2();  // drawn in this order since the first release
             const float u_lobe = rng.next();
-            const auto bs = bsdf_sample_hero(mat, si->shading, wo, wl, u_lobe, u_dir);
+            const auto bs = bsdf_sample_hero(mat, si->shading, wo, wl, u_lobe, u_dir, texture_weights(m_scene, mat, si->uv));
             if (!bs || !(bs->pdf[0] > 0.0f)) break;
             beta *= bs->f_cos[0] / bs->pdf[0];
             if (!(beta > 0.0f)) break;

@@ -50,6 +50,7 @@
 #include "iris/render/lights.hpp"
 #include "iris/render/random.hpp"
 #include "iris/render/scene.hpp"
+#include "iris/render/texture.hpp"
 #include "iris/sampling/hwss.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/sampled.hpp"
@@ -128,9 +129,14 @@ public:
                 // reflectance for NEE and for BSDF sampling): the hero's from its lattice tables
                 // and the index model, the bins' from theirs
                 sampled_spectra<C> hero;
-                if constexpr (B::reads_albedo) hero.reflectance = m_hero.albedo[shape.material](wl);
+                emission_ref albedo;  // the reflectance at the hit: the material's table, or a texel's basis mix
+                if constexpr (B::reads_albedo) {
+                    albedo = albedo_ref(shape.material, m_hero.albedo_basis,
+                                        texture_weights(m_scene, m_scene.materials[shape.material], vx.uv));
+                    hero.reflectance = m_hero.reflectance(albedo, wl);
+                }
                 if constexpr (B::reads_eta) hero.index = detail::etas(bxdf.ior(), wl);
-                bterm.enter(bxdf, shape.material);
+                bterm.enter(bxdf, shape.material, albedo);
                 if constexpr (!B::delta) next_event(tracer, bxdf, vx, lo, wl, hero, hp, bterm, rng, out);
                 // BSDF sampling with the hero wavelength; the bins follow it (the sample stays
                 // in here: returning it through the visit cost a copy with store-forwarding stalls)

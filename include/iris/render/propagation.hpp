@@ -8,7 +8,7 @@
 /// |---|---|---|
 /// | `start(dist, u)` | first, while α < 1 | jitter the bins, throughput t_b = 1 − r_α(λ_b) |
 /// | `emission(le, w)` | the hero's ray finds light (an emitter or the environment) | L_b += t_b · Le(λ_b) · w |
-/// | `enter(bxdf, m)` | each vertex | read material m's spectra at the bins |
+/// | `enter(bxdf, m, albedo)` | each vertex | read material m's spectra at the bins (its reflectance there: `albedo`) |
 /// | `prepare_light`, `receives_light`, `light(le, w, p_l)` | next-event estimation | the bins' f·\|cos\| toward the light; L_b += t_b f_b Le_b · w/p_l |
 /// | `follow(bxdf, s)` | the hero samples the BSDF | t_b ← t_b · follow_b / p(ωi \| λ₀) |
 /// | `roulette_max`, `survive(q)` | Russian roulette | B's largest weight counts; t_b ← t_b / q |
@@ -42,7 +42,7 @@ struct no_propagation {
     void start(const Distribution&, float) noexcept {}
     void emission(const emission_ref&, float) noexcept {}
     template <class B>
-    void enter(const B&, std::uint32_t) noexcept {}
+    void enter(const B&, std::uint32_t, const emission_ref&) noexcept {}
     template <class B>
     void prepare_light(const B&, const glm::vec3&, const glm::vec3&) noexcept {}
     template <class B>
@@ -81,13 +81,25 @@ public:
         add_light(v, k);
     }
 
-    /// \brief A vertex of material m: its reflectance at the bins is read once, here (its
-    /// indices are read as the BxDF asks for them).
+    /// \brief A vertex of material m: its reflectance at the bins is read once, here, from
+    /// `albedo` (iris/render/bins.hpp's `albedo_ref`: m's own row, or a texel's three basis
+    /// rows mixed); its indices are read as the BxDF asks for them.
     template <class B>
-    void enter(const B& /*bxdf*/, std::uint32_t m) noexcept {
+    void enter(const B& /*bxdf*/, std::uint32_t m, const emission_ref& albedo) noexcept {
         m_material = m;
-        if constexpr (B::reads_albedo)
-            if (m_on) m_t.albedo[m].evaluate(m_bp, m_refl);
+        if constexpr (B::reads_albedo) {
+            if (!m_on) return;
+            if (albedo.count == 1) {
+                m_t.albedo[albedo.first].evaluate(m_bp, m_refl);
+                return;
+            }
+            for (std::size_t b = 0; b < Bins; ++b) m_refl[b] = 0.0f;
+            for (std::uint32_t i = 0; i < albedo.count; ++i) {
+                const view v = m_t.albedo[albedo.first + i].at(m_bp, m_scratch);
+                const float w = albedo.weight[static_cast<int>(i)];
+                for (std::size_t b = 0; b < Bins; ++b) m_refl[b] += w * v[b];
+            }
+        }
     }
 
     /// \brief Next-event estimation toward unit wi, before the shadow ray: the bins' value

@@ -58,9 +58,11 @@ inline bool is_dispersive(const ior_model& m) noexcept {
 
 namespace material {
 
-/// \brief Lambertian reflector with spectral albedo in [0, 1].
+/// \brief Lambertian reflector with spectral albedo in [0, 1]: `reflectance`, or, with
+/// `texture`, the image `scene_desc::textures[*texture]` looked up at the hit's uv.
 struct diffuse {
     tabulated_spectrum reflectance;
+    std::optional<std::uint32_t> texture = std::nullopt;
 };
 
 /// \brief Glass-like interface. roughness = 0: smooth (specular, a delta BSDF);
@@ -141,6 +143,21 @@ struct shape_desc {
     std::optional<std::uint32_t> emitter;
 };
 
+/// \brief What a texture lookup does outside [0, 1]²: repeat the image (pbrt-v4's default),
+/// clamp to its edge texels, or repeat it mirrored.
+enum class texture_wrap : std::uint8_t { repeat, clamp, mirror };
+
+/// \brief A reflectance image: per texel the weights of the three reflectance basis spectra
+/// (iris/spectrum/rgb_upsampling.hpp), each in [0, 1], row 0 at the top; looked up
+/// bilinearly at uv with v up (iris/render/texture.hpp).
+struct image_texture {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> weights;  ///< width × height
+    texture_wrap wrap = texture_wrap::repeat;
+    std::string file;                ///< where it came from (for messages and `iris-scene info`)
+    std::size_t clipped_texels = 0;  ///< texels outside [0, 1] (after the scale) clamped into it
+};
+
 /// \brief How an environment image covers the sphere of directions (iris's +y is up).
 enum class environment_mapping : std::uint8_t {
     latlong,     ///< x: φ = 2πx, y: θ = πy from +y; direction (sin θ cos φ, cos θ, sin θ sin φ)
@@ -194,6 +211,7 @@ struct scene_desc {
     std::vector<shape_desc> shapes;
     std::vector<light_desc> lights;  ///< emit through `emitters[light.emitter]`
     std::optional<environment_desc> environment;
+    std::vector<image_texture> textures;  ///< indexed by the materials that use them
 
     std::size_t triangle_count() const noexcept {
         std::size_t n = 0;

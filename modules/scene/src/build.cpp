@@ -31,13 +31,15 @@ iris::triangle_mesh to_core(Mesh&& m) {
     }
 }
 
-/// The quad recipe: size.x × size.z in the plane y = 0, centred, front face +y. Built here
+/// The quad recipe: size.x × size.z in the plane y = 0, centred, front face +y, uv over
+/// [0, 1]² (u along +x, v along −z). Built here
 /// (two triangles) so that its convention is exactly the documented one.
 iris::triangle_mesh make_quad(float sx, float sz) {
     const float x = 0.5f * sx, z = 0.5f * sz;
     iris::triangle_mesh m;
     m.positions = {{-x, 0.0f, -z}, {-x, 0.0f, z}, {x, 0.0f, z}, {x, 0.0f, -z}};
     m.triangles = {{0, 1, 2}, {0, 2, 3}};  // (v1 − v0) × (v2 − v0) = +y
+    m.uvs = {{0.0f, 1.0f}, {0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}};  // u along +x, v along −z: a texture reads upright from +z
     return m;
 }
 
@@ -104,6 +106,51 @@ iris::environment_map read_environment_image(const scene_document& doc, const en
     return m;
 }
 
+/// A reflectance image → per-texel weights of the three reflectance basis spectra: values
+/// decoded to linear sRGB (8/16-bit files from sRGB unless the document says linear; EXR
+/// as stored), times the scale, clamped into [0, 1] (counted: a reflectance cannot exceed
+/// 1), then upsampled as a constant reflectance is (`upsample_linear_srgb`).
+iris::image_texture read_texture(const scene_document& doc, const texture_spec& spec) {
+    const auto fail = [&](const std::string& message) -> void {
+        throw error(doc.source, spec.line, spec.pointer + "/texture", message);
+    };
+    std::string ext = spec.file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    iris::image pixels;
+    bool decode = false;
+    try {
+        if (ext == ".exr") {
+            pixels = exr::read(spec.file).pixels;
+        } else {
+            pixels = exr::read_ldr(spec.file).pixels;
+            decode = spec.srgb;
+        }
+    } catch (const exr::error& e) {
+        fail(e.what());
+    }
+    iris::image_texture t;
+    t.width = pixels.width();
+    t.height = pixels.height();
+    t.wrap = spec.wrap;
+    t.file = spec.file.string();
+    if (t.width < 1 || t.height < 1) fail("the texture image has no pixels");
+    t.weights.reserve(pixels.pixel_count());
+    for (const auto& p : pixels.pixels()) {
+        double c[3] = {p.r, p.g, p.b};
+        bool clipped = false;
+        for (double& v : c) {
+            if (!std::isfinite(v)) fail("the texture image has a pixel that is not finite (NaN or infinity)");
+            if (decode) v = srgb_decode(v);
+            v *= spec.scale;
+            if (v < 0.0 || v > 1.0) clipped = true;
+        }
+        if (clipped) ++t.clipped_texels;
+        const rgb_reflectance r = upsample_linear_srgb({c[0], c[1], c[2]});
+        t.weights.emplace_back(static_cast<float>(r.red), static_cast<float>(r.green), static_cast<float>(r.blue));
+    }
+    return t;
+}
+
 }  // namespace
 
 iris::scene_desc build_scene(const scene_document& doc) {
@@ -142,6 +189,23 @@ iris::scene_desc build_scene(const scene_document& doc) {
     }
 
     if (const auto& img = doc.environment_image) s.environment->map = read_environment_image(doc, *img);
+    s.textures.clear();
+    for (const auto& spec : doc.textures) s.textures.push_back(read_texture(doc, spec));
+    // a textured material's constant reflectance: its texture's mean (what the tools report)
+    for (auto& m : s.materials)
+        if (auto* d = std::get_if<material::diffuse>(&m); d && d->texture) {
+            const auto& t = s.textures[*d->texture];
+            glm::dvec3 mean(0.0);
+            for (const auto& w : t.weights) mean += glm::dvec3(w);
+            mean /= static_cast<double>(t.weights.size());
+            const rgb_reflectance r{mean.x, mean.y, mean.z};
+            std::vector<double> lambda, value;
+            for (std::size_t i = 0; i < cie::cmf_samples; ++i) {
+                lambda.push_back(cie::cmf_lambda_min + static_cast<double>(i));
+                value.push_back(r(lambda.back()));
+            }
+            d->reflectance = tabulated_spectrum(std::move(lambda), std::move(value), outside::clamp);
+        }
 
     // power → radiance: Φ = π·A·∫L dλ per side (a Lambertian emitter's exitance is π·L);
     // the document normalised the SPD to ∫L dλ = 1 over the domain
@@ -166,6 +230,10 @@ std::vector<std::string> approximations(const iris::scene_desc& s) {
                       std::to_string(m.weights.size()) +
                       " texels have a negative (out-of-sRGB-gamut) component, clamped to 0");
     }
+    for (const auto& t : s.textures)
+        if (t.clipped_texels > 0)
+            out.push_back("texture " + t.file + ": " + std::to_string(t.clipped_texels) + " of " +
+                          std::to_string(t.weights.size()) + " texels are outside [0, 1] (times the scale), clamped into it");
     return out;
 }
 

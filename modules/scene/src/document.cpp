@@ -106,12 +106,67 @@ pinhole_camera read_camera(const reader& root) {
 
 // ---- materials and emitters -------------------------------------------------------------
 
-material_desc read_material(const reader& r, const detail::domain& d) {
+/// A path the document names, relative to its directory, that must be an existing file.
+std::filesystem::path existing_file(const reader& f, const std::filesystem::path& base_dir, const std::string& what) {
+    const std::string name = f.string();
+    if (name.empty()) f.fail("expected the file name of " + what + ", got an empty string");
+    std::filesystem::path p(name);
+    if (p.is_relative()) p = base_dir / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec))
+        f.fail(what + " '" + name + "' not found (looked for " + p.lexically_normal().string() + ")");
+    return p;
+}
+
+/// {"texture": FILE, "wrap": ..., "scale": ..., "encoding": ...}: a reflectance image.
+texture_spec read_texture(const reader& r, const std::filesystem::path& base_dir) {
+    r.expect_object({"texture", "wrap", "scale", "encoding"},
+                    "a reflectance texture {\"texture\": FILE, \"wrap\": ..., \"scale\": ..., \"encoding\": ...}");
+    texture_spec t;
+    t.pointer = r.pointer();
+    t.line = r.context().locations.find(r.pointer());
+    const reader f = r.at("texture");
+    t.file = existing_file(f, base_dir, "texture image");
+    std::string ext = t.file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".exr" && ext != ".bmp" && ext != ".tga")
+        f.fail("expected a texture image (.png, .jpg, .jpeg, .bmp, .tga: sRGB-encoded; .exr: linear), got '" +
+               f.string() + "'");
+    if (r.has("wrap")) {
+        const reader w = r.at("wrap");
+        const std::string v = w.string();
+        if (v == "repeat") t.wrap = texture_wrap::repeat;
+        else if (v == "clamp") t.wrap = texture_wrap::clamp;
+        else if (v == "mirror") t.wrap = texture_wrap::mirror;
+        else w.fail("unknown texture wrap '" + v + "'; expected repeat, clamp or mirror");
+    }
+    if (r.has("scale")) t.scale = r.at("scale").number_in(0.0, 1e6, true, false, "a scale of the texture's values");
+    if (r.has("encoding")) {
+        const reader e = r.at("encoding");
+        const std::string v = e.string();
+        if (ext == ".exr") e.fail("an EXR texture is linear; 'encoding' applies to 8- and 16-bit images only");
+        if (v == "srgb") t.srgb = true;
+        else if (v == "linear") t.srgb = false;
+        else e.fail("unknown texture encoding '" + v + "'; expected srgb or linear");
+    }
+    return t;
+}
+
+material_desc read_material(const reader& r, const detail::domain& d, const std::filesystem::path& base_dir,
+                            std::vector<texture_spec>& textures) {
     if (!r.is_object()) r.fail("expected a material object, got " + describe(r.value()));
     const std::string type = r.at("type").string();
     if (type == "diffuse") {
         r.expect_object({"type", "reflectance"});
-        return material::diffuse{detail::read_reflectance(r.at("reflectance"))};
+        const reader refl = r.at("reflectance");
+        if (refl.is_object() && refl.has("texture")) {
+            textures.push_back(read_texture(refl, base_dir));
+            // the constant stands for the texture where one number is needed (the tools' summaries)
+            material::diffuse m{tabulated_spectrum({360.0, 830.0}, {0.5, 0.5}, outside::clamp)};
+            m.texture = static_cast<std::uint32_t>(textures.size() - 1);
+            return m;
+        }
+        return material::diffuse{detail::read_reflectance(refl)};
     }
     if (type == "dielectric") {
         r.expect_object({"type", "ior", "roughness"});
@@ -441,7 +496,7 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
         if (!mats.is_object()) mats.fail("expected an object of named materials, got " + describe(mats.value()));
         for (const auto& [name, v] : mats.value().items()) {
             if (name.empty()) mats.fail("a material name must not be empty");
-            s.materials.push_back(read_material(mats.at(name), dom));
+            s.materials.push_back(read_material(mats.at(name), dom, base_dir, doc.textures));
             s.material_names.push_back(name);
             material_index[name] = static_cast<std::uint32_t>(s.materials.size() - 1);
         }

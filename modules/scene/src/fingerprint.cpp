@@ -80,7 +80,14 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
                             }
                         },
                         x.ior);
-                } else if constexpr (std::is_same_v<T, material::diffuse> || std::is_same_v<T, material::conductor>) {
+                } else if constexpr (std::is_same_v<T, material::diffuse>) {
+                    // every field: a new one changes the size and stops the build here
+                    static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<std::uint32_t>),
+                                  "fingerprint: hash every field of material::diffuse");
+                    h(x.reflectance);
+                    if (x.texture) h(*x.texture);  // only when present: untextured scenes keep their fingerprint
+                } else if constexpr (std::is_same_v<T, material::conductor>) {
+                    static_assert(sizeof(T) == sizeof(tabulated_spectrum), "fingerprint: hash every field of material::conductor");
                     h(x.reflectance);
                 } else {
                     static_assert(sizeof(T) == 0, "fingerprint: hash every field of a new material type");
@@ -100,9 +107,11 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
         for (const auto& p : s.mesh.positions) h(p);
         h(s.mesh.triangles.size());
         for (const auto& t : s.mesh.triangles) h.bytes(t.data(), sizeof t);
-        if (!s.mesh.normals.empty() || !s.mesh.uvs.empty()) {  // (absent: the fingerprints of meshes without them are unchanged)
+        if (!s.mesh.normals.empty()) {  // (absent: the fingerprints of meshes without them are unchanged)
             h(s.mesh.normals.size());
             for (const auto& n : s.mesh.normals) h(n);
+        }
+        if (!scene.textures.empty()) {  // uvs matter only to textures (every quad has them)
             h(s.mesh.uvs.size());
             for (const auto& uv : s.mesh.uvs) h.bytes(&uv, sizeof uv);
         }
@@ -120,6 +129,15 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
             h(m->height);
             for (const auto& w : m->weights) h(w);
             for (const auto& b : scene.environment->basis) h(b);
+        }
+    }
+    if (!scene.textures.empty()) {  // likewise
+        h(scene.textures.size());
+        for (const auto& t : scene.textures) {
+            h(t.width);
+            h(t.height);
+            h(static_cast<int>(t.wrap));
+            for (const auto& w : t.weights) h(w);
         }
     }
     if (!scene.lights.empty()) {  // likewise

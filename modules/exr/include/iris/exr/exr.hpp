@@ -54,6 +54,18 @@ loaded read(const std::filesystem::path& path);
 /// limits (the fuzz target lowers it, so that it does not spend its time allocating).
 loaded read_memory(std::string_view bytes, const std::string& name, std::int64_t pixel_limit = max_pixels);
 
+/// \brief An 8- or 16-bit image as stored: values in [0, 1] (not decoded from sRGB), grey
+/// and grey-alpha images expanded to RGB, alpha dropped.
+struct ldr_image {
+    iris::image pixels;
+    int bits = 8;      ///< per channel in the file: 8 or 16
+    int channels = 3;  ///< in the file: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA
+};
+
+/// \brief Read a PNG, JPEG, BMP or TGA image (stb_image), within `max_side`/`max_pixels`.
+/// \throws error naming the file and what went wrong
+ldr_image read_ldr(const std::filesystem::path& path);
+
 /// \brief Write an 8-bit sRGB-encoded PNG preview of linear RGB, scaled by 2^exposure, atomically.
 void write_png(const std::filesystem::path& path, const image& img, double exposure = 0.0);
 

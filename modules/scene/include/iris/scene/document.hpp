@@ -75,6 +75,18 @@ struct environment_image_spec {
     std::size_t line = 0;
 };
 
+/// \brief A reflectance image a material names: read by `build_scene` into
+/// `scene_desc::textures` (same index). PNG/JPEG/BMP/TGA values are sRGB-encoded unless
+/// `srgb` is false; EXR values are linear.
+struct texture_spec {
+    std::filesystem::path file;  ///< absolute, or relative to the working directory
+    texture_wrap wrap = texture_wrap::repeat;
+    double scale = 1.0;
+    bool srgb = true;  ///< decode 8/16-bit values from sRGB (ignored for EXR, always linear)
+    std::string pointer;
+    std::size_t line = 0;
+};
+
 /// \brief A parsed, checked scene that has not been meshed yet.
 struct scene_document {
     std::string source;           ///< the name used in messages (file path or builtin:NAME)
@@ -83,6 +95,7 @@ struct scene_document {
     std::vector<emitter_spec> emitters;  ///< parallel to `desc.emitters`
     std::vector<shape_spec> shapes;
     std::optional<environment_image_spec> environment_image;
+    std::vector<texture_spec> textures;  ///< what becomes `desc.textures`
 };
 
 /// \brief Parse and check a scene. `source_name` is used in messages; relative mesh paths
