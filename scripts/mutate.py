@@ -10,13 +10,18 @@ or SURVIVED (all passed). At the end the sources are as before and the targets a
     python3 scripts/mutate.py film ab    # the mutations whose names contain 'film' or 'ab'
 
 A mutation whose text is not found is reported as STALE (the code moved: update its text).
+
+IRIS_MUTATE_BUILD=DIR uses another configured build directory, e.g. one configured with
+-DIRIS_ISA_COPIES=OFF, where a mutated render header recompiles a third of the renderer
+(the mutations do not depend on the instruction set).
 """
+import os
 import pathlib
 import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-BUILD = ROOT / "build" / "release"
+BUILD = pathlib.Path(os.environ.get("IRIS_MUTATE_BUILD", ROOT / "build" / "release")).resolve()
 
 # name, [(file, old, new), ...], [targets], ctest regex
 MUTATIONS = [
@@ -208,6 +213,28 @@ MUTATIONS = [
     ("spot-linear-falloff",
      [("include/iris/render/lights/point.hpp", "        return t * t * (3.0f - 2.0f * t);", "        return t;")],
      ["light_render_test"], "LightRender"),
+    # issue 31: the surface interaction and textures
+    ("shading-normal-not-turned-to-the-windings-side",
+     [("include/iris/render/interaction.hpp", "    return glm::dot(ns, ng) < 0.0f ? -ns : ns;", "    return ns;")],
+     ["render_test"], "Interaction"),
+    ("rough-eval-pdf-is-f",
+     [("include/iris/render/materials/rough_dielectric.hpp", "            out.pdf[k] = v.pdf;", "            out.pdf[k] = v.f_cos;")],
+     ["render_test"], "Bsdf"),
+    ("texture-v-not-flipped",
+     [("include/iris/render/texture.hpp", "    const float fy = (1.0f - uv.y) * static_cast<float>(tex.height) - 0.5f;",
+       "    const float fy = uv.y * static_cast<float>(tex.height) - 0.5f;")],
+     ["render_test", "light_render_test"], "Texture"),
+    ("mirror-wrap-repeats",
+     [("include/iris/render/texture.hpp", "            return m < n ? m : period - 1 - m;", "            return m % n;")],
+     ["render_test"], "Texture"),
+    ("hero-ignores-the-texture",
+     [("include/iris/render/integrator.hpp", "texture_weights(m_scene, m_scene.materials[shape.material], vx.uv));",
+       "std::nullopt);")],
+     ["light_render_test"], "TextureRender"),
+    ("bins-mix-the-basis-rows-reversed",
+     [("include/iris/render/propagation.hpp", "                const view v = m_t.albedo[albedo.first + i].at(m_bp, m_scratch);",
+       "                const view v = m_t.albedo[albedo.first + 2 - i].at(m_bp, m_scratch);")],
+     ["light_render_test"], "TextureRender"),
 ]
 
 
