@@ -77,6 +77,26 @@ def glass_header():
     (OUT / "glass.hpp").write_text(text)
 
 
+METALS = [("Ag", "silver"), ("Al", "aluminium"), ("Au", "gold"), ("Cu", "copper"), ("CuZn", "brass, Cu70Zn30")]
+
+
+def metals_header():
+    """The complex refractive index (eta, k) of the named metals, each on its own nodes."""
+    text = HEADER.format(src="metal_*.csv")
+    text += "#include <string_view>\n\nnamespace iris::data::metals {\n\n"
+    for name, _ in METALS:
+        header, rows = read(f"metal_{name}.csv")
+        assert header == ["lambda_nm", "eta", "k"], header
+        lams = [float(r[0]) for r in rows]
+        assert all(b > a for a, b in zip(lams, lams[1:])), f"{name}: wavelengths must increase"
+        ident = name.lower()
+        text += array(f"{ident}_lambda", [r[0] for r in rows])
+        text += array(f"{ident}_eta", [r[1] for r in rows])
+        text += array(f"{ident}_k", [r[2] for r in rows]) + "\n"
+    text += "}  // namespace iris::data::metals\n"
+    (OUT / "metals.hpp").write_text(text)
+
+
 def sobol_header():
     """Joe & Kuo's rows (d, s, a, m_1..m_s), copied verbatim into constexpr rows."""
     src = "sobol_joe_kuo_6_256.txt"
@@ -113,6 +133,7 @@ def main():
     leds = [(c, c.replace("-", "_").lower()) for c in header[1:]]
     spectral_header("cie_led_illuminants_1nm.csv", "cie_led.hpp", "cie_led", leds)
     glass_header()
+    metals_header()
 
 
 if __name__ == "__main__":

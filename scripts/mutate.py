@@ -218,7 +218,8 @@ MUTATIONS = [
      [("include/iris/render/interaction.hpp", "    return glm::dot(ns, ng) < 0.0f ? -ns : ns;", "    return ns;")],
      ["render_test"], "Interaction"),
     ("rough-eval-pdf-is-f",
-     [("include/iris/render/materials/rough_dielectric.hpp", "            out.pdf[k] = v.pdf;", "            out.pdf[k] = v.f_cos;")],
+     [("include/iris/render/materials/rough_dielectric.hpp", "            out.pdf[k] = v.pdf;\n        }\n        return out;",
+       "            out.pdf[k] = v.f_cos;\n        }\n        return out;")],
      ["render_test"], "Bsdf"),
     ("texture-v-not-flipped",
      [("include/iris/render/texture.hpp", "    const float fy = (1.0f - uv.y) * static_cast<float>(tex.height) - 0.5f;",
@@ -235,6 +236,14 @@ MUTATIONS = [
      [("include/iris/render/propagation.hpp", "                const view v = m_t.albedo[albedo.first + i].at(m_bp, m_scratch);",
        "                const view v = m_t.albedo[albedo.first + 2 - i].at(m_bp, m_scratch);")],
      ["light_render_test"], "TextureRender"),
+    # issue 31: conductors with a complex index
+    ("conductor-fresnel-drops-p-polarisation",
+     [("include/iris/render/materials/fresnel.hpp", "    const float f = 0.5f * (rs + rp);", "    const float f = rs;")],
+     ["render_test"], "Bsdf"),
+    ("bins-read-eta-as-k",
+     [("include/iris/render/propagation.hpp", "        view k() const { return p.m_t.k[p.m_material].at(p.m_bp, p.m_k_scratch); }",
+       "        view k() const { return p.m_t.eta[p.m_material].at(p.m_bp, p.m_k_scratch); }")],
+     ["light_render_test"], "ConductorRender"),
 ]
 
 

@@ -68,7 +68,11 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
             const char* wrap = t.wrap == iris::texture_wrap::repeat ? "repeat" : t.wrap == iris::texture_wrap::clamp ? "clamp" : "mirror";
             return fmt::format("diffuse texture={} {}x{} wrap={}", t.file, t.width, t.height, wrap);
         }
-        std::string operator()(const iris::material::conductor&) const { return "conductor"; }
+        std::string operator()(const iris::material::conductor& c) const {
+            if (!c.ior) return "conductor";
+            return fmt::format("conductor {} eta(550)={:.4g} k(550)={:.4g} R0(550)={:.4f}", c.ior->name, c.ior->eta(550.0),
+                               c.ior->k(550.0), c.reflectance(550.0));
+        }
         std::string operator()(const iris::material::dielectric& d) const {
             const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"
                                 : std::holds_alternative<iris::cauchy_ior>(d.ior) ? "cauchy"

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <numbers>
 
 #include <iris/render/bsdf.hpp>
 #include <iris/render/random.hpp>
+#include <iris/spectrum/named.hpp>
 
 #include "test_scenes.hpp"
 
@@ -204,4 +206,76 @@ TEST(Bsdf, FresnelMatchesClosedFormsForTheHeroAndTheBins) {
             }
         }
     }
+}
+
+namespace {
+/// Conductor Fresnel from the complex amplitudes (independent of iris's real form).
+double complex_conductor_fresnel(double c, double eta, double k) {
+    const std::complex<double> n(eta, k);
+    const std::complex<double> ct = std::sqrt(1.0 - (1.0 - c * c) / (n * n));
+    const std::complex<double> rs = (c - n * ct) / (c + n * ct), rp = (n * c - ct) / (n * c + ct);
+    return 0.5 * (std::norm(rs) + std::norm(rp));
+}
+}  // namespace
+
+// The conductor Fresnel against the complex-amplitude formula over angles and indices
+// (metals, a near-dielectric k = 0, and k → ∞, which reflects everything), and the named
+// metals against their reflectance at normal incidence computed from the data files'
+// rows (data/README.md: R = ((n − 1)² + k²)/((n + 1)² + k²) at the row nearest 550 nm).
+TEST(Bsdf, ConductorFresnelIsExact) {
+    for (const auto [eta, k] : {std::pair{0.2, 3.0}, std::pair{0.05, 3.6}, std::pair{1.2, 7.0}, std::pair{2.5, 0.0},
+                                std::pair{1.5, 0.01}, std::pair{0.9, 1e-3}, std::pair{3.0, 30.0}}) {
+        for (double c = 0.0; c <= 1.0; c += 1.0 / 64.0) {
+            const double want = complex_conductor_fresnel(c, eta, k);
+            EXPECT_NEAR(iris::detail::fresnel_conductor(static_cast<float>(c), static_cast<float>(eta), static_cast<float>(k)),
+                        want, 2e-5 + 2e-5 * want)
+                << "eta " << eta << " k " << k << " cos " << c;
+        }
+    }
+    for (double c : {0.0, 1e-4, 0.3, 0.7, 1.0}) {
+        EXPECT_NEAR(iris::detail::fresnel_conductor(static_cast<float>(c), 1.0f, 1e4f), 1.0, 1e-6) << c;
+        EXPECT_NEAR(iris::detail::fresnel_conductor(static_cast<float>(c), 0.5f, 1e6f), 1.0, 1e-6) << c;
+    }
+    const struct {
+        const char* metal;
+        double lambda, r0;
+    } rows[] = {{"Ag", 548.6, 0.9828}, {"Al", 563.57, 0.9147}, {"Au", 548.6, 0.7869}, {"Cu", 548.6, 0.6195}, {"CuZn", 550.0, 0.7887}};
+    for (const auto& r : rows) {
+        const auto m = iris::find_metal(r.metal);
+        ASSERT_TRUE(m.has_value()) << r.metal;
+        const auto f = iris::detail::fresnel_conductor(1.0f, static_cast<float>(m->eta_spectrum()(r.lambda)),
+                                                       static_cast<float>(m->k_spectrum()(r.lambda)));
+        EXPECT_NEAR(f, r.r0, 1e-4) << r.metal;
+    }
+    EXPECT_FALSE(iris::find_metal("gold").has_value());
+}
+
+// A smooth conductor with an index reflects with F(|cos θo|, η_k, k_k) at each wavelength,
+// for the hero's sample and for the bins alike; without an index, with its reflectance.
+TEST(Bsdf, SmoothConductorWeightsAreFresnel) {
+    constexpr std::size_t M = 4;
+    const auto au = iris::find_metal("Au");
+    ASSERT_TRUE(au.has_value());
+    iris::material::conductor gold{iris::tabulated_spectrum({360.0, 830.0}, {0.5, 0.5}, iris::outside::clamp)};
+    gold.ior = iris::material::conductor_ior{"Au", au->eta_spectrum(), au->k_spectrum()};
+    const iris::material_desc mat = gold;
+    const sampled_wavelengths<M> wl({420.0f, 510.0f, 600.0f, 700.0f}, {1.0f, 1.0f, 1.0f, 1.0f});
+    for (float co : {1.0f, 0.6f, 0.1f, -0.4f}) {
+        const float s = std::sqrt(1.0f - co * co);
+        const glm::vec3 wo(s, 0.0f, co);
+        const auto hs = iris::bsdf_sample_hero(mat, n, wo, wl, 0.3f, {0.5f, 0.5f});
+        ASSERT_TRUE(hs.has_value());
+        EXPECT_TRUE(hs->delta);
+        EXPECT_NEAR(hs->wi.z, co, 1e-6f);
+        for (std::size_t k = 0; k < M; ++k) {
+            const double l = wl[k];
+            const double want = complex_conductor_fresnel(std::fabs(co), au->eta_spectrum()(l), au->k_spectrum()(l));
+            EXPECT_NEAR(hs->f_cos[k], want, 1e-4) << co << " " << l;
+            EXPECT_EQ(hs->pdf[k], 1.0f);
+        }
+    }
+    iris::material::conductor mirror{iris::tabulated_spectrum({360.0, 830.0}, {0.3, 0.9}, iris::outside::clamp)};
+    const auto ms = iris::bsdf_sample_hero(iris::material_desc{mirror}, n, glm::vec3(0.6f, 0.0f, 0.8f), wl, 0.3f, {0.5f, 0.5f});
+    ASSERT_TRUE(ms.has_value());
+    for (std::size_t k = 0; k < M; ++k) EXPECT_NEAR(ms->f_cos[k], mirror.reflectance(wl[k]), 1e-6) << k;
 }

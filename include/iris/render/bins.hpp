@@ -291,6 +291,7 @@ inline emission_ref albedo_ref(std::uint32_t m, std::uint32_t basis_first, const
 struct hero_tables {
     std::vector<lattice_spectrum> albedo;
     std::vector<lattice_spectrum> emission;
+    std::vector<lattice_spectrum> conductor_eta, conductor_k;  ///< per material; empty unless a conductor with an index
     std::uint32_t albedo_basis = 0;  ///< the first basis row of `albedo` (= the material count)
 
     /// \brief Le(λ_k) = Σ_i weight_i · table_{first+i}(λ_k) (an emitter: its table times 1, exactly).
@@ -309,8 +310,18 @@ struct hero_tables {
         const float lo = scene.lambda_min, hi = scene.lambda_max;
         for (const material_desc& m : scene.materials)
             visit_bxdf(m, [&](const auto& b) {
-                if constexpr (std::remove_cvref_t<decltype(b)>::reads_albedo) albedo.emplace_back(b.reflectance(), lo, hi);
+                using B = std::remove_cvref_t<decltype(b)>;
+                if constexpr (B::reads_albedo) albedo.emplace_back(b.reflectance(), lo, hi);
                 else albedo.emplace_back();
+                if constexpr (reads_conductor_v<B>) {
+                    if (b.has_ior()) {
+                        conductor_eta.emplace_back(b.conductor_eta(), lo, hi);
+                        conductor_k.emplace_back(b.conductor_k(), lo, hi);
+                        return;
+                    }
+                }
+                conductor_eta.emplace_back();
+                conductor_k.emplace_back();
             });
         albedo_basis = static_cast<std::uint32_t>(albedo.size());
         if (has_textures(scene))
@@ -345,6 +356,7 @@ struct bin_tables {
     std::vector<spectrum> eta;     ///< per material; empty unless its BxDF reads_eta
     std::vector<spectrum> eta2;     ///< η², likewise (Fresnel at the bins reads η² and 1/η², no squaring or division)
     std::vector<spectrum> inv_eta2; ///< 1/η², likewise
+    std::vector<spectrum> k;        ///< per material: a conductor's k (its η is in `eta`); empty otherwise
     std::vector<spectrum> emission;  ///< indexed as `emission_ref` indexes them
     spectrum x_bar, y_bar, z_bar;
 
@@ -364,11 +376,23 @@ struct bin_tables {
                     eta.emplace_back(lattice, [&](double l) { return refractive_index(ior, l); });
                     eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(ior, l), 2.0); });
                     inv_eta2.emplace_back(lattice, [&](double l) { return std::pow(refractive_index(ior, l), -2.0); });
+                } else if constexpr (reads_conductor_v<B>) {
+                    if (b.has_ior()) eta.emplace_back(lattice, b.conductor_eta());
+                    else eta.emplace_back();
+                    eta2.emplace_back();
+                    inv_eta2.emplace_back();
                 } else {
                     eta.emplace_back();
                     eta2.emplace_back();
                     inv_eta2.emplace_back();
                 }
+                if constexpr (reads_conductor_v<B>) {
+                    if (b.has_ior()) {
+                        k.emplace_back(lattice, b.conductor_k());
+                        return;
+                    }
+                }
+                k.emplace_back();
             });
         if (has_textures(scene))
             for (const tabulated_spectrum& b : reflectance_basis()) albedo.emplace_back(lattice, b);

@@ -136,6 +136,11 @@ public:
                     hero.reflectance = m_hero.reflectance(albedo, wl);
                 }
                 if constexpr (B::reads_eta) hero.index = detail::etas(bxdf.ior(), wl);
+                if constexpr (reads_conductor_v<B>)
+                    if (bxdf.has_ior()) {
+                        hero.index = m_hero.conductor_eta[shape.material](wl);
+                        hero.kappa = m_hero.conductor_k[shape.material](wl);
+                    }
                 bterm.enter(bxdf, shape.material, albedo);
                 if constexpr (!B::delta) next_event(tracer, bxdf, vx, lo, wl, hero, hp, bterm, rng, out);
                 // BSDF sampling with the hero wavelength; the bins follow it (the sample stays

@@ -189,6 +189,7 @@ private:
         view eta() const { return p.m_t.eta[p.m_material].at(p.m_bp, p.m_eta_scratch); }
         view eta2() const { return p.m_t.eta2[p.m_material].at(p.m_bp, p.m_eta2_scratch); }
         view inv_eta2() const { return p.m_t.inv_eta2[p.m_material].at(p.m_bp, p.m_inv_eta2_scratch); }
+        view k() const { return p.m_t.k[p.m_material].at(p.m_bp, p.m_k_scratch); }
     };
     bin_spectra spectra() const noexcept { return {*this}; }
 
@@ -299,7 +300,7 @@ private:
     sampled_spectrum<Bins> m_tb, m_lb, m_refl, m_f;
     std::array<float, Bins> m_scratch;  ///< for emitters off the lattice (binned_spectrum::at)
     std::array<float, Bins> m_mix;      ///< an environment texel's spectrum at the bins
-    mutable std::array<float, Bins> m_eta_scratch, m_eta2_scratch, m_inv_eta2_scratch;
+    mutable std::array<float, Bins> m_eta_scratch, m_eta2_scratch, m_inv_eta2_scratch, m_k_scratch;
 };
 
 }  // namespace iris

@@ -72,9 +72,19 @@ struct dielectric {
     float roughness = 0.0f;
 };
 
-/// \brief Perfect specular reflector (mirror, polished metal) with spectral reflectance.
+/// \brief A conductor's complex refractive index η(λ) + i·k(λ) (relative to the outside,
+/// taken as vacuum), e.g. a named metal's (`find_metal`).
+struct conductor_ior {
+    std::string name;  ///< the metal's name, or "tabulated"
+    tabulated_spectrum eta, k;
+};
+
+/// \brief Perfect specular reflector (mirror, polished metal): with `ior`, the exact
+/// Fresnel reflectance of a conductor of complex index η + ik at every angle; without
+/// it, the angle-independent spectral `reflectance` (an idealised mirror).
 struct conductor {
     tabulated_spectrum reflectance;
+    std::optional<conductor_ior> ior = std::nullopt;
 };
 
 }  // namespace material

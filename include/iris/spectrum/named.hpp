@@ -18,6 +18,7 @@
 #include "iris/spectrum/data/cie_d65.hpp"
 #include "iris/spectrum/data/cie_led.hpp"
 #include "iris/spectrum/data/glass.hpp"
+#include "iris/spectrum/data/metals.hpp"
 #include "iris/spectrum/ior.hpp"
 #include "iris/spectrum/tabulated.hpp"
 
@@ -80,6 +81,33 @@ inline constexpr std::array<named_glass, data::glass::catalogue.size()> glasses 
 inline std::optional<named_glass> find_glass(std::string_view name) {
     const auto it = std::find_if(glasses.begin(), glasses.end(), [&](const named_glass& g) { return g.name == name; });
     return it == glasses.end() ? std::nullopt : std::optional(*it);
+}
+
+/// \brief A built-in metal: its complex refractive index η + ik, measured (data/README.md).
+struct named_metal {
+    std::string_view name;
+    std::string_view description;
+    std::span<const double> lambda, eta, k;
+
+    /// \brief η(λ) and k(λ) as tables (linear between the measured nodes, clamped beyond).
+    tabulated_spectrum eta_spectrum() const {
+        return {{lambda.begin(), lambda.end()}, {eta.begin(), eta.end()}, outside::clamp};
+    }
+    tabulated_spectrum k_spectrum() const { return {{lambda.begin(), lambda.end()}, {k.begin(), k.end()}, outside::clamp}; }
+};
+
+inline constexpr std::array<named_metal, 5> metals{{
+    {"Ag", "silver (Johnson & Christy 1972)", data::metals::ag_lambda, data::metals::ag_eta, data::metals::ag_k},
+    {"Al", "aluminium (Rakić 1995)", data::metals::al_lambda, data::metals::al_eta, data::metals::al_k},
+    {"Au", "gold (Johnson & Christy 1972)", data::metals::au_lambda, data::metals::au_eta, data::metals::au_k},
+    {"Cu", "copper (Johnson & Christy 1972)", data::metals::cu_lambda, data::metals::cu_eta, data::metals::cu_k},
+    {"CuZn", "brass, Cu70Zn30 (Querry 1985)", data::metals::cuzn_lambda, data::metals::cuzn_eta, data::metals::cuzn_k},
+}};
+
+/// \brief The metal called `name` (exact, case-sensitive), if iris knows it.
+inline std::optional<named_metal> find_metal(std::string_view name) {
+    const auto it = std::find_if(metals.begin(), metals.end(), [&](const named_metal& m) { return m.name == name; });
+    return it == metals.end() ? std::nullopt : std::optional(*it);
 }
 
 }  // namespace iris

@@ -176,6 +176,22 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
             m.roughness = static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness"));
         return m;
     }
+    if (type == "conductor") {
+        r.expect_object({"type", "reflectance", "metal", "eta", "k"});
+        if (auto ior = detail::read_conductor_ior(r)) {
+            // its reflectance at normal incidence stands for it where one spectrum is needed (the tools)
+            std::vector<double> lambda, value;
+            for (std::size_t i = 0; i < cie::cmf_samples; ++i) {
+                const double l = cie::cmf_lambda_min + static_cast<double>(i);
+                const double e = ior->eta(l), k = ior->k(l);
+                lambda.push_back(l);
+                value.push_back(((e - 1.0) * (e - 1.0) + k * k) / ((e + 1.0) * (e + 1.0) + k * k));
+            }
+            material::conductor m{tabulated_spectrum(std::move(lambda), std::move(value), outside::clamp)};
+            m.ior = std::move(ior);
+            return m;
+        }
+    }
     if (type == "conductor" || type == "mirror") {
         r.expect_object({"type", "reflectance"});
         return material::conductor{r.has("reflectance") ? detail::read_reflectance(r.at("reflectance"))

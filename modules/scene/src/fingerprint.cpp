@@ -87,8 +87,16 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
                     h(x.reflectance);
                     if (x.texture) h(*x.texture);  // only when present: untextured scenes keep their fingerprint
                 } else if constexpr (std::is_same_v<T, material::conductor>) {
-                    static_assert(sizeof(T) == sizeof(tabulated_spectrum), "fingerprint: hash every field of material::conductor");
+                    static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<material::conductor_ior>),
+                                  "fingerprint: hash every field of material::conductor");
+                    static_assert(sizeof(material::conductor_ior) == sizeof(std::string) + 2 * sizeof(tabulated_spectrum),
+                                  "fingerprint: hash every field of material::conductor_ior");
                     h(x.reflectance);
+                    if (x.ior) {  // only when present: reflectance-only conductors keep their fingerprint
+                        h(std::string_view(x.ior->name));
+                        h(x.ior->eta);
+                        h(x.ior->k);
+                    }
                 } else {
                     static_assert(sizeof(T) == 0, "fingerprint: hash every field of a new material type");
                 }

@@ -129,6 +129,42 @@ named_spd read_spd(const reader& r) {
            describe(r.value()));
 }
 
+std::optional<material::conductor_ior> read_conductor_ior(const reader& r) {
+    if (r.has("metal")) {
+        for (const char* key : {"eta", "k", "reflectance"})
+            if (r.has(key))
+                r.at(key).fail(std::string("'") + key + "' and 'metal' are exclusive: a named metal has its own index");
+        const reader m = r.at("metal");
+        const std::string name = m.string();
+        const auto metal = find_metal(name);
+        if (!metal) {
+            std::string names;
+            for (const auto& x : metals) names += (names.empty() ? "" : ", ") + std::string(x.name);
+            m.fail("unknown metal '" + name + "'; expected one of " + names);
+        }
+        return material::conductor_ior{name, metal->eta_spectrum(), metal->k_spectrum()};
+    }
+    if (!r.has("eta") && !r.has("k")) return std::nullopt;
+    if (!r.has("eta") || !r.has("k")) r.fail(std::string("a conductor's index needs both 'eta' and 'k'; '") + (r.has("eta") ? "k" : "eta") + "' is missing");
+    if (r.has("reflectance")) r.at("reflectance").fail("'reflectance' and 'eta'/'k' are exclusive");
+    const auto part = [](const reader& x, double lo, bool lo_open, const char* what) {
+        if (x.is_number()) {
+            const double v = x.number_in(lo, 100.0, lo_open, false, what);
+            return tabulated_spectrum({360.0, 830.0}, {v, v}, outside::clamp);
+        }
+        if (x.is_object()) {
+            auto t = read_table(x, lo, 100.0, outside::clamp, std::string(what) + " table");
+            if (lo_open)
+                for (std::size_t i = 0; i < t.values().size(); ++i)
+                    if (!(t.values()[i] > 0.0)) x.at("values").at(i).fail(std::string("expected ") + what + " > 0");
+            return t;
+        }
+        x.fail(std::string("expected ") + what + ": a number or {\"wavelengths\": [...], \"values\": [...]}; got " + describe(x.value()));
+    };
+    return material::conductor_ior{"tabulated", part(r.at("eta"), 0.0, true, "a conductor's real index eta"),
+                         part(r.at("k"), 0.0, false, "a conductor's extinction coefficient k")};
+}
+
 ior_model read_ior(const reader& r, const domain& d) {
     ior_model m;
     if (r.is_number()) {

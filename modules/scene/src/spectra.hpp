@@ -3,6 +3,7 @@
 /// \brief Reading the spectral parts of a scene file: reflectances, emission SPDs, IOR
 /// models (format: docs/scene-format.md).
 
+#include <optional>
 #include <string>
 
 #include "iris/render/scene.hpp"
@@ -29,6 +30,11 @@ named_spd read_spd(const reader& r);
 
 /// \brief An IOR model; n(λ) is checked to be finite and in [1, 10] over `d`.
 ior_model read_ior(const reader& r, const domain& d);
+
+/// \brief A conductor's complex index: {"metal": NAME} of the built-in metals, or
+/// {"eta": ..., "k": ...}, each a number or a {"wavelengths", "values"} table (η > 0,
+/// k ≥ 0). `r` is the material object; nothing if it names neither.
+std::optional<material::conductor_ior> read_conductor_ior(const reader& r);
 
 /// \brief ∫ s(λ) dλ over the domain by 1 nm trapezoids (the light sampler's rule).
 double integrate_over(const tabulated_spectrum& s, const domain& d) noexcept;

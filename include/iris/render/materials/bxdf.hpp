@@ -16,6 +16,7 @@
 /// |---|---|
 /// | `delta` | a delta BSDF (mirror, smooth glass): no `f_cos`/`pdf` for a given ωi, no light sampling |
 /// | `reads_albedo`, `reads_eta` | which spectra it reads: `reflectance()` or `ior()` then exist |
+/// | `reads_conductor` (optional) | a conductor's η and k (`conductor_eta()`, `conductor_k()` tables, read as `eta()`, `k()`) where `has_ior()` |
 /// | `f_cos<N>(wo, wi, s)` | f(ωo, ωi, λ_k)·\|cos θi\| (0 for delta BxDFs) |
 /// | `pdf<N>(wo, wi, s)` | p(ωi \| ωo, λ_k), solid angle (0 for delta BxDFs) |
 /// | `eval<N>(wo, wi, s)` | both at once (`bsdf_value`), sharing what they have in common |
@@ -78,15 +79,17 @@ struct bsdf_sample {
 };
 
 /// \brief A material's spectra held as values at N wavelengths (what a BxDF reads through
-/// `albedo()`, `eta()`, `eta2()`, `inv_eta2()`); only those of its material are set.
+/// `albedo()`, `eta()`, `eta2()`, `inv_eta2()`, and a conductor's `k()`); only those of
+/// its material are set.
 template <std::size_t N>
 struct sampled_spectra {
-    sampled_spectrum<N> reflectance, index, index2, inv_index2;
+    sampled_spectrum<N> reflectance, index, index2, inv_index2, kappa;
 
     const sampled_spectrum<N>& albedo() const noexcept { return reflectance; }
     const sampled_spectrum<N>& eta() const noexcept { return index; }
     const sampled_spectrum<N>& eta2() const noexcept { return index2; }
     const sampled_spectrum<N>& inv_eta2() const noexcept { return inv_index2; }
+    const sampled_spectrum<N>& k() const noexcept { return kappa; }
 
     static sampled_spectra with_albedo(const sampled_spectrum<N>& r) noexcept {
         sampled_spectra s;
@@ -104,6 +107,11 @@ struct sampled_spectra {
         return s;
     }
 };
+
+/// \brief Whether BxDF B may read a conductor's complex index (`eta()` and `k()` from
+/// per-material tables, when its `has_ior()`); false unless B says so.
+template <class B>
+inline constexpr bool reads_conductor_v = requires { requires B::reads_conductor; };
 
 /// \brief The BxDF concept of the table above, checked at 4 wavelengths.
 template <class B>

@@ -43,6 +43,29 @@ inline float fresnel_dielectric(float cos_i, float eta) noexcept {
     return fresnel_walter(std::fabs(cos_i), cos_i < 0.0f ? 1.0f / eta2 : eta2);
 }
 
+/// \brief Unpolarised Fresnel reflectance of a conductor of complex index η + ik seen
+/// from vacuum at c = |cos θi| (Born & Wolf §14.2; the real form with a² + b² =
+/// |η̃² − sin²θ|, a = Re √(η̃² − sin²θ)): with s² = 1 − c²,
+///   R_s = (a² + b² − 2ac + c²) / (a² + b² + 2ac + c²),
+///   R_p = R_s · (c²(a² + b²) − 2acs² + s⁴) / (c²(a² + b²) + 2acs² + s⁴),
+/// F = (R_s + R_p)/2. Real arithmetic only, no division by c (F → 1 at grazing
+/// incidence), so it vectorises over the bins like `fresnel_walter`; at normal incidence
+/// F = ((η − 1)² + k²) / ((η + 1)² + k²).
+inline float fresnel_conductor(float c, float eta, float k) noexcept {
+    c = std::clamp(c, 0.0f, 1.0f);
+    const float c2 = c * c, s2 = 1.0f - c2;
+    const float e2 = eta * eta, k2 = k * k;
+    const float t0 = e2 - k2 - s2;
+    const float ab2 = std::sqrt(std::max(0.0f, t0 * t0 + 4.0f * e2 * k2));  // a² + b²
+    const float a = std::sqrt(std::max(0.0f, 0.5f * (ab2 + t0)));
+    const float t1 = ab2 + c2, t2 = 2.0f * a * c;
+    const float rs = (t1 - t2) / (t1 + t2);
+    const float t3 = c2 * ab2 + s2 * s2, t4 = t2 * s2;
+    const float rp = rs * (t3 - t4) / (t3 + t4);
+    const float f = 0.5f * (rs + rp);
+    return f == f ? f : 1.0f;  // 0/0 only where η = k = 0 at grazing incidence
+}
+
 /// \brief Refract `wi` (pointing away) through a surface with normal `n`; eta = n_inside /
 /// n_outside with `n` pointing outside. Returns the transmitted direction and the relative
 /// eta it saw (η_t/η_i), or nothing on total internal reflection.

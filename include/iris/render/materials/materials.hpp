@@ -71,9 +71,15 @@ decltype(auto) visit_bxdf(const material_desc& m, F&& f) {
 /// its lattice tables instead, iris/render/bins.hpp).
 template <std::size_t N, bxdf B>
 sampled_spectra<N> scene_spectra(const B& b, const sampled_wavelengths<N>& wl) noexcept {
-    if constexpr (B::reads_albedo) return sampled_spectra<N>::with_albedo(sample(b.reflectance(), wl));
-    else if constexpr (B::reads_eta) return sampled_spectra<N>::with_eta(detail::etas(b.ior(), wl));
-    else return {};
+    sampled_spectra<N> s;
+    if constexpr (B::reads_albedo) s = sampled_spectra<N>::with_albedo(sample(b.reflectance(), wl));
+    else if constexpr (B::reads_eta) s = sampled_spectra<N>::with_eta(detail::etas(b.ior(), wl));
+    if constexpr (reads_conductor_v<B>)
+        if (b.has_ior()) {
+            s.index = sample(b.conductor_eta(), wl);
+            s.kappa = sample(b.conductor_k(), wl);
+        }
+    return s;
 }
 
 static_assert(separable_bxdf<lambertian> && bxdf<specular_conductor> && bxdf<smooth_dielectric> &&
