@@ -244,6 +244,34 @@ MUTATIONS = [
      [("include/iris/render/propagation.hpp", "        view k() const { return p.m_t.k[p.m_material].at(p.m_bp, p.m_k_scratch); }",
        "        view k() const { return p.m_t.eta[p.m_material].at(p.m_bp, p.m_k_scratch); }")],
      ["light_render_test"], "ConductorRender"),
+    # issue 31: rough conductors
+    ("rough-conductor-pdf-without-jacobian",
+     [("include/iris/render/materials/conductor.hpp", "        const float p = m.d_visible(wo, wm) / (4.0f * c);",
+       "        const float p = m.d_visible(wo, wm) / 4.0f;")],
+     ["render_test"], "Bsdf.RoughConductor*"),
+    ("rough-conductor-fresnel-at-the-macro-normal",
+     [("include/iris/render/materials/conductor.hpp", "        out.f_cos = fresnel<N>(c, s, geometric);",
+       "        out.f_cos = fresnel<N>(std::fabs(wo.z), s, geometric);")],
+     ["render_test"], "Bsdf.RoughConductor*"),
+    ("rough-conductor-unshadowed",
+     [("include/iris/render/materials/conductor.hpp", "        const float geometric = d * m.g(wo, wi) / (4.0f * std::fabs(wo.z));",
+       "        const float geometric = d * m.g1(wo) / (4.0f * std::fabs(wo.z));")],
+     ["light_render_test"], "ConductorRender.*Rough*"),
+    # issue 32's groundwork: a bounce's extra draws must not read the next bounce's slots
+    ("stream-overflow-reads-the-next-bounce",
+     [("include/iris/render/random.hpp", "        if (m_slot == m_end) [[unlikely]] {",
+       "        if (false && m_slot == m_end) [[unlikely]] {")],
+     ["render_test"], "Sampler.ABounce*"),
+    # issue 31: mesh files with normals and uvs
+    ("obj-split-ignores-normals",
+     [("modules/geometry/src/load.cpp",
+       "                const std::array<long long, 3> key{c.vertex_index, any_normal ? c.normal_index : -1, any_uv ? c.texcoord_index : -1};",
+       "                const std::array<long long, 3> key{c.vertex_index, -1, any_uv ? c.texcoord_index : -1};")],
+     ["geometry_test"], "LoadMesh.*"),
+    ("ply-reads-v-as-u",
+     [("modules/geometry/src/load.cpp", "                        if (static_cast<int>(k) == uv[c]) t[c] = v;",
+       "                        if (static_cast<int>(k) == uv[0]) t[c] = v;")],
+     ["geometry_test"], "LoadMesh.*"),
 ]
 
 

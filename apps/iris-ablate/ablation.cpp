@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 
 #include <iris/exr/exr.hpp>
+#include <iris/hash.hpp>
 #include <iris/metrics/metrics.hpp>
 #include <iris/renderer/renderer.hpp>
 #include <iris/scene/scene.hpp>
@@ -33,22 +34,13 @@ std::string file_safe(std::string s) {
     return s;
 }
 
-/// \brief FNV-1a, 64 bit: a stable content hash (std::hash may differ between builds).
-struct fnv1a {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    void add(const void* data, std::size_t n) {
-        const auto* b = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
-    }
-    void add(std::string_view s) { add(s.data(), s.size()); }
-    /// \brief Every byte of a file (nothing if it cannot be read).
-    void add_file(const fs::path& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::vector<char> buf(1 << 16);
-        while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
-            add(buf.data(), static_cast<std::size_t>(in.gcount()));
-    }
-};
+/// \brief Every byte of a file into `h` (nothing if it cannot be read).
+void add_file(fnv1a& h, const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> buf(1 << 16);
+    while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
+        h.add(buf.data(), static_cast<std::size_t>(in.gcount()));
+}
 
 /// \brief What the cached reference depends on besides size, spp and seed: the scene's
 /// content (its JSON text and every triangle, so an edited file or mesh is a new scene)
@@ -59,13 +51,13 @@ std::uint64_t reference_key(const scene_desc& scene, const std::string& name_or_
     if (const auto text = iris::scene::builtin_scene_text(name_or_path))
         f.add(*text);
     else
-        f.add_file(name_or_path);
+        add_file(f, name_or_path);
     for (const auto& sh : scene.shapes) {
         f.add(sh.mesh.positions.data(), sh.mesh.positions.size() * sizeof(sh.mesh.positions[0]));
         f.add(sh.mesh.triangles.data(), sh.mesh.triangles.size() * sizeof(sh.mesh.triangles[0]));
     }
-    f.add_file("/proc/self/exe");
-    return f.h;
+    add_file(f, "/proc/self/exe");
+    return f.value();
 }
 
 /// \brief Progress over the whole run (all references and renders), with ETA.

@@ -69,9 +69,10 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
             return fmt::format("diffuse texture={} {}x{} wrap={}", t.file, t.width, t.height, wrap);
         }
         std::string operator()(const iris::material::conductor& c) const {
-            if (!c.ior) return "conductor";
-            return fmt::format("conductor {} eta(550)={:.4g} k(550)={:.4g} R0(550)={:.4f}", c.ior->name, c.ior->eta(550.0),
-                               c.ior->k(550.0), c.reflectance(550.0));
+            const std::string rough = c.roughness > 0.0f ? fmt::format(" roughness={:g}", c.roughness) : std::string(" smooth");
+            if (!c.ior) return "conductor" + rough;
+            return fmt::format("conductor {} eta(550)={:.4g} k(550)={:.4g} R0(550)={:.4f}{}", c.ior->name, c.ior->eta(550.0),
+                               c.ior->k(550.0), c.reflectance(550.0), rough);
         }
         std::string operator()(const iris::material::dielectric& d) const {
             const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"

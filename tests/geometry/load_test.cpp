@@ -66,6 +66,103 @@ TEST_F(LoadMesh, EveryFormatRoundTripsExactly) {
     EXPECT_TRUE(g::check_mesh(g::load_mesh(dir / "a.obj")).ok());
 }
 
+// The sample with a normal and a uv per vertex (not unit, awkward digits).
+g::triangle_mesh sample_with_attributes() {
+    auto m = sample();
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+        const auto f = static_cast<float>(i);
+        m.normals.emplace_back(0.3f + 0.1f * f, -1.7f, 0.123456789f * f + 0.5f);
+        m.uvs.emplace_back(0.987654321f * f, -0.25f + 0.3333333f * f);
+    }
+    return m;
+}
+
+// Every corner of every triangle has the same position, normal and uv in both meshes
+// (bitwise); vertex order and sharing may differ (an OBJ with vn/vt is split per distinct
+// triple, in the order the faces first use them).
+::testing::AssertionResult same_corners(const g::triangle_mesh& a, const g::triangle_mesh& b) {
+    if (a.triangles.size() != b.triangles.size()) return ::testing::AssertionFailure() << "triangle counts differ";
+    if (a.normals.empty() != b.normals.empty()) return ::testing::AssertionFailure() << "normals present in one only";
+    if (a.uvs.empty() != b.uvs.empty()) return ::testing::AssertionFailure() << "uvs present in one only";
+    for (std::size_t t = 0; t < a.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const auto i = a.triangles[t][static_cast<std::size_t>(k)], j = b.triangles[t][static_cast<std::size_t>(k)];
+            if (a.positions[i] != b.positions[j]) return ::testing::AssertionFailure() << "triangle " << t << ": positions differ";
+            if (!a.normals.empty() && a.normals[i] != b.normals[j]) return ::testing::AssertionFailure() << "triangle " << t << ": normals differ";
+            if (!a.uvs.empty() && a.uvs[i] != b.uvs[j]) return ::testing::AssertionFailure() << "triangle " << t << ": uvs differ";
+        }
+    return ::testing::AssertionSuccess();
+}
+
+// Normals and texture coordinates survive PLY (ASCII, binary either way, floats or
+// doubles) exactly and vertex for vertex, OBJ corner for corner; normals alone or uvs alone
+// as well; OBJ vertices with the same position but different normals are split.
+TEST_F(LoadMesh, NormalsAndUvsRoundTripExactly) {
+    const auto m = sample_with_attributes();
+    for (const auto& [name, bytes] :
+         {std::pair{"a.ply", iris::test::to_ascii_ply(m)}, std::pair{"le.ply", iris::test::to_binary_ply(m, false)},
+          std::pair{"be.ply", iris::test::to_binary_ply(m, true)}, std::pair{"d.ply", iris::test::to_binary_ply(m, true, true)}}) {
+        const auto l = g::load_mesh(write(name, bytes));
+        EXPECT_TRUE(same(l, m)) << name;
+        EXPECT_EQ(l.normals, m.normals) << name;
+        EXPECT_EQ(l.uvs, m.uvs) << name;
+    }
+    EXPECT_TRUE(same_corners(g::load_mesh(write("a.obj", iris::test::to_obj(m))), m));
+    auto normals_only = m, uvs_only = m;
+    normals_only.uvs.clear();
+    uvs_only.normals.clear();
+    for (const auto* x : {&normals_only, &uvs_only}) {
+        EXPECT_TRUE(same_corners(g::load_mesh(write("b.obj", iris::test::to_obj(*x))), *x));
+        const auto l = g::load_mesh(write("b.ply", iris::test::to_binary_ply(*x, false)));
+        EXPECT_EQ(l.normals, x->normals);
+        EXPECT_EQ(l.uvs, x->uvs);
+    }
+    // a flat-shaded edge: positions 1 and 3 with two normals each → six vertices
+    const auto split = g::load_mesh(write("split.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvn 1 0 0\n"
+                                                        "f 1//1 2//1 3//1\nf 1//2 3//2 4//2\n"));
+    EXPECT_EQ(split.positions.size(), 6u);
+    ASSERT_EQ(split.normals.size(), 6u);
+    EXPECT_EQ(split.normals[split.triangles[0][0]], glm::vec3(0, 0, 1));
+    EXPECT_EQ(split.normals[split.triangles[1][0]], glm::vec3(1, 0, 0));
+    EXPECT_EQ(split.positions[split.triangles[1][0]], glm::vec3(0, 0, 0));
+    // PLY's other names for texture coordinates
+    const auto st = g::load_mesh(write("st.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                                 "property float z\nproperty float s\nproperty float t\nelement face 1\n"
+                                                 "property list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n"
+                                                 "0 1 0 0.5 1\n3 0 1 2\n"));
+    ASSERT_EQ(st.uvs.size(), 3u);
+    EXPECT_EQ(st.uvs[2], glm::vec2(0.5f, 1.0f));
+}
+
+// Each broken attribute is a named error: partial normals or uvs, two names for one
+// coordinate, non-finite or zero normals, out-of-range vn/vt indices, corners with and
+// without normals in one OBJ.
+TEST_F(LoadMesh, BrokenNormalsAndUvsAreNamedErrors) {
+    const std::string tri_ply_head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string tri_ply_faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    expect_error("nxny.ply", tri_ply_head + "property float nx\nproperty float ny\n" + tri_ply_faces + "0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n",
+                 "some of the normal's nx, ny, nz but not all three");
+    expect_error("u.ply", tri_ply_head + "property float u\n" + tri_ply_faces + "0 0 0 0\n1 0 0 0\n0 1 0 0\n3 0 1 2\n",
+                 "one texture coordinate ('u') without the other");
+    expect_error("us.ply", tri_ply_head + "property float u\nproperty float s\nproperty float v\n" + tri_ply_faces,
+                 "two texture coordinates for u ('u' and 's')");
+    const std::string normals = "property float nx\nproperty float ny\nproperty float nz\n";
+    expect_error("zero.ply", tri_ply_head + normals + tri_ply_faces + "0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n3 0 1 2\n",
+                 "vertex 1 has a zero normal");
+    expect_error("nan.ply", tri_ply_head + normals + tri_ply_faces + "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 nan 0 1\n3 0 1 2\n",
+                 "vertex 2 has a non-finite normal");
+    expect_error("vn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n", "refers to normal 1, but there are 1 normals");
+    expect_error("vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/3\n", "refers to texture coordinate 2, but there are 1");
+    expect_error("mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1 3 4\n",
+                 "some face corners have a normal");
+    expect_error("mixed_vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3\n", "some face corners have texture coordinates");
+    expect_error("uvinf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 1e39 0\nf 1/1 2/1 3/1\n", "non-finite texture coordinates");
+    expect_error("normals.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n",
+                 "line 1: 'NOFF': the normals and texture coordinates of OFF files are not read");
+    expect_error("st.off", "STOFF\n", "'STOFF': the normals and texture coordinates");
+    expect_error("vrange.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 5//1\n", "refers to vertex 4, but there are 3 vertices");
+}
+
 TEST_F(LoadMesh, PolygonsAreFannedAndCommentsSkipped) {
     // A unit cube as six quads, with comments, CRLF line ends and per-face colours.
     const std::string off =
@@ -75,8 +172,9 @@ TEST_F(LoadMesh, PolygonsAreFannedAndCommentsSkipped) {
     EXPECT_EQ(m.positions.size(), 8u);
     EXPECT_EQ(m.triangle_count(), 12u);
     EXPECT_TRUE(g::check_mesh(m).ok()) << g::check_mesh(m).detail;
-    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\nvn 0 0 1\n"
-                            "f 1//1 5//1 7//1 3//1\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf -8 -6 -5 -7\nf 5 6 8 7\n";
+    // (a face with normals among faces without is an error now: BrokenNormalsAndUvsAreNamedErrors)
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"
+                            "f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf -8 -6 -5 -7\nf 5 6 8 7\n";
     const auto o = g::load_mesh(write("quads.obj", obj));
     EXPECT_EQ(o.triangle_count(), 12u);
     EXPECT_NEAR(g::enclosed_volume(o), 1.0, 1e-6);

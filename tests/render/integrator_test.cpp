@@ -3,10 +3,12 @@
 // preset-level tests (every preset on the furnace, U1–U3) live with the renderer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <vector>
 
+#include <iris/render/bsdf_only.hpp>
 #include <iris/render/camera.hpp>
 #include <iris/render/integrator.hpp>
 #include <iris/sampling/bias.hpp>
@@ -104,7 +106,7 @@ TEST(Integrator, NegativeControlWrongAlbedoIsDetected) {
 }
 
 TEST(Integrator, PropagatedTermRestoresTheUnrestrictedFurnace) {
-    // SPEC U1 at path level: no dispersion, so F_R + B is unbiased at every α. With the
+    // U1 (docs/method.md §4) at path level: no dispersion, so F_R + B is unbiased at every α. With the
     // box at its narrowest (500–600 nm), B carries the quarter of the luminance outside it.
     const auto s = iris::test::furnace(0.8);
     const iris::light_sampler lights(s);
@@ -203,3 +205,38 @@ TEST(Integrator, RestrictionOnlyEstimatesTheWindowedIntegral) {
 }
 
 }  // namespace
+
+// No bounce draws past its slots of the low-discrepancy layout (render/random.hpp): a
+// bounce that did would have read the next bounce's numbers before the stream's overflow
+// guard, and reads padded numbers of its own now — either way, a path tracer that needs it
+// has outgrown its layout. Both estimators, with and without the B term, at diffuse, glass
+// (smooth and rough, dispersive), mirror and area-lit vertices, long paths (roulette at 3).
+TEST(Integrator, NoBounceDrawsPastItsSlots) {
+    const iris::sellmeier_ior bk7{1.03961212, 0.231792344, 1.01046945, 0.00600069867, 0.0200179144, 103.560653};
+    auto mirror_floor = iris::test::lit_floor();
+    mirror_floor.materials.at(0) = iris::material::conductor{iris::test::flat(0.9)};
+    const std::vector<iris::scene_desc> scenes = {iris::test::furnace_with_glass(0.5, bk7),
+                                                  iris::test::furnace_with_glass(0.5, bk7, 0.2f), iris::test::lit_floor(),
+                                                  mirror_floor};
+    std::uint32_t deepest = 0;
+    for (const auto& s : scenes) {
+        const iris::light_sampler lights(s);
+        const iris::test::brute_force_intersector tracer(s);
+        const iris::camera_rays cam(s.camera, s.camera.width, s.camera.height);
+        const iris::path_integrator<test_config<4, true>> integ(s, lights, {1000, 3});
+        const iris::bsdf_only_integrator independent(s, {1000, 3});
+        const auto setup = iris::sampler_setup::make(iris::sampler_kind::sobol, 5, 256);
+        std::uint32_t overflows = 0;
+        for (int i = 0; i < 256; ++i)
+            for (int which = 0; which < 2; ++which) {
+                iris::sample_stream rng(setup, 1, 2, 2 * 8 + 1, static_cast<std::uint64_t>(i));
+                const auto d = cam.direction(1, 2, rng.next2());
+                if (which == 0) (void)integ.trace(tracer, cam.origin(), d, box_distribution{}, 0.0f, rng);
+                else (void)independent.trace(tracer, cam.origin(), d, box_distribution{}, 0.0f, rng);
+                overflows += rng.overflows();
+                deepest = std::max(deepest, rng.slot());
+            }
+        EXPECT_EQ(overflows, 0u) << s.name;
+    }
+    EXPECT_GT(deepest, iris::sample_stream::first_bounce_slot + 3 * iris::sample_stream::slots_per_bounce);  // long paths ran
+}

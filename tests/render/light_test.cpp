@@ -5,7 +5,7 @@
 // χ² method (environment maps: `map_fit`): N = 200 000 directions (fixed seeds) binned into 24 bands of equal z × 48
 // sectors of φ (1152 cells of equal solid angle, Archimedes); the expected count of a cell
 // is N ∫ pdf dω over it by a 64 × 8 midpoint rule (in z and φ) of the routine's own pdf;
-// adjacent cells are pooled to ≥ 5 expected (stats.hpp). Family: every χ² test of this file
+// adjacent cells are pooled to ≥ 5 expected (direction_fit.hpp, stats.hpp). Family: every χ² test of this file
 // (m = 8) at family-wise α = 0.01, Šidák: α' = 1 − 0.99^(1/8) ≈ 1.3e-3. The negative
 // controls (a cone sampled against the pdf of a slightly wider one; an environment map
 // sampled against a distribution with one texel's weight changed) must be rejected at α'.
@@ -26,6 +26,7 @@
 #include <iris/sampling/piecewise.hpp>
 #include <iris/sampling/random.hpp>
 
+#include "direction_fit.hpp"
 #include "stats.hpp"
 #include "test_scenes.hpp"
 
@@ -35,54 +36,10 @@ using iris::test::chi2_result;
 constexpr double family_alpha = 0.01;
 constexpr std::size_t family_size = 8;
 const double alpha_test = iris::test::sidak(family_alpha, family_size);
-constexpr int z_bands = 24, phi_sectors = 48, draws = 200000;
-constexpr int sub_z = 64;  // quadrature points per band in z (a map's texel edges cut the bands)
+constexpr int draws = 200000;
 constexpr double pi_d = std::numbers::pi;
 
-std::size_t cell_of(const glm::vec3& d) {
-    const double z = std::clamp(static_cast<double>(d.z), -1.0, 1.0);
-    double phi = std::atan2(static_cast<double>(d.y), static_cast<double>(d.x));
-    if (phi < 0.0) phi += 2.0 * pi_d;
-    const int iz = std::min(z_bands - 1, static_cast<int>((z + 1.0) * 0.5 * z_bands));
-    const int ip = std::min(phi_sectors - 1, static_cast<int>(phi / (2.0 * pi_d) * phi_sectors));
-    return static_cast<std::size_t>(iz * phi_sectors + ip);
-}
-
-/// \brief χ² of `sample(u)` (nullopt: no sample, counted as a miss of mass 1 − ∫pdf) against `pdf(d)`.
-chi2_result direction_fit(const std::function<std::optional<glm::vec3>(glm::vec2)>& sample,
-                          const std::function<double(const glm::vec3&)>& pdf, std::uint64_t seed) {
-    const std::size_t cells = static_cast<std::size_t>(z_bands * phi_sectors);
-    std::vector<double> expected(cells + 1, 0.0), observed(cells + 1, 0.0);
-    const double cell_omega = 4.0 * pi_d / static_cast<double>(cells);
-    double mass = 0.0;
-    for (int iz = 0; iz < z_bands; ++iz)
-        for (int ip = 0; ip < phi_sectors; ++ip) {
-            double s = 0.0;
-            for (int a = 0; a < sub_z; ++a)
-                for (int b = 0; b < 8; ++b) {
-                    const double z = -1.0 + 2.0 * (iz + (a + 0.5) / sub_z) / z_bands;
-                    const double phi = 2.0 * pi_d * (ip + (b + 0.5) / 8.0) / phi_sectors;
-                    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-                    s += pdf(glm::vec3(static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)),
-                                       static_cast<float>(z)));
-                }
-            const double e = s / (8.0 * sub_z) * cell_omega;
-            expected[static_cast<std::size_t>(iz * phi_sectors + ip)] = e * draws;
-            mass += e;
-        }
-    expected[cells] = std::max(0.0, 1.0 - mass) * draws;
-    iris::counter_rng rng(seed, 0);
-    for (int i = 0; i < draws; ++i) {
-        const glm::vec2 u(rng.next(), rng.next());
-        const auto d = sample(u);
-        observed[d ? cell_of(*d) : cells] += 1.0;
-    }
-    if (std::getenv("IRIS_TEST_VERBOSE"))
-        for (std::size_t i = 0; i < cells; ++i)
-            if ((observed[i] - expected[i]) * (observed[i] - expected[i]) / std::max(1.0, expected[i]) > 12.0)
-                std::printf("cell z%zu phi%zu: expected %.1f observed %.0f\n", i / phi_sectors, i % phi_sectors, expected[i], observed[i]);
-    return iris::test::chi_square(expected, observed);
-}
+using iris::test::direction_fit;
 
 void expect_fit(const chi2_result& r, const char* what) {
     EXPECT_TRUE(r.impossible.empty()) << what << ": " << r.impossible;

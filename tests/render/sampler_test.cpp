@@ -305,3 +305,34 @@ TEST(Sampler, SobolSlotsAreStratifiedJointly) {
 }
 
 }  // namespace
+
+// A bounce that draws more than its slots reads numbers of its own past the table, not the
+// next bounce's (render/random.hpp), and the stream counts it; the next bounce is unchanged.
+TEST(Sampler, ABounceThatOverflowsReadsNoOtherSlot) {
+    for (auto k : {sampler_kind::sobol, sampler_kind::zsobol}) {
+        const auto setup = sampler_setup::make(k, 9, 16);
+        sample_stream a(setup, 3, 4, 43, 5), b(setup, 3, 4, 43, 5);
+        a.start_bounce(0);
+        b.start_bounce(1);
+        std::vector<float> bounce1;
+        for (std::uint32_t i = 0; i < sample_stream::slots_per_bounce; ++i) bounce1.push_back(b.next());
+        for (std::uint32_t i = 0; i < sample_stream::slots_per_bounce; ++i) (void)a.next();
+        EXPECT_EQ(a.overflows(), 0u);
+        std::vector<float> extra;
+        for (int i = 0; i < 3 * static_cast<int>(sample_stream::slots_per_bounce); ++i) extra.push_back(a.next());
+        EXPECT_EQ(a.overflows(), 1u) << iris::sampler_name(k);
+        for (float x : extra)
+            for (float y : bounce1) EXPECT_NE(x, y) << iris::sampler_name(k);
+        a.start_bounce(1);
+        for (std::uint32_t i = 0; i < sample_stream::slots_per_bounce; ++i) EXPECT_EQ(a.next(), bounce1[i]) << i;
+        EXPECT_EQ(a.overflows(), 1u);
+        // the camera's slots (before bounce 0) are guarded as well
+        sample_stream c(setup, 3, 4, 43, 5);
+        for (std::uint32_t i = 0; i < sample_stream::first_bounce_slot; ++i) (void)c.next();
+        const float past = c.next();
+        EXPECT_EQ(c.overflows(), 1u);
+        sample_stream d(setup, 3, 4, 43, 5);
+        d.start_bounce(0);
+        EXPECT_NE(past, d.next());
+    }
+}

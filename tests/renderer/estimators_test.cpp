@@ -90,7 +90,7 @@ double max_detectable(const std::string& scene) {
 // `falling-cubes` scenes and 30 % on `prism`, whose caustic light through the slit both
 // estimators find only by BSDF sampling. The exact direct-lighting test is the precise
 // check of next-event estimation; this one is the end-to-end check through glass. `hwss` stands for
-// every preset here: the presets' agreement with one another is SPEC U1/U2's test. The
+// every preset here: the presets' agreement with one another is the test of U1/U2 (docs/method.md §4). The
 // quadrants and the whole image are tested too (21 regions a scene).
 TEST(Estimators, BsdfOnlyAgreesWithNeeMisOnEveryBuiltinScene) {
     const auto scenes = iris::scene::builtin_scenes();
@@ -170,7 +170,7 @@ TEST(Estimators, IndexMatchedGlassIsInvisibleUnderASmallLamp) {
               z_max);
 }
 
-// Secondary wavelengths at a specular dispersive event: they must be terminated (SPEC §2),
+// Secondary wavelengths at a specular dispersive event: they must be terminated (docs/method.md §3),
 // so `hwss` (C = 4) and `hwss-c1` (the hero alone, nothing to terminate) estimate the same
 // image on the prism scene, whose screen is lit only through dispersive glass. Kept
 // secondaries would follow the hero's refracted direction and wash the spectrum out.

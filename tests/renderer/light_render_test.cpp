@@ -16,6 +16,7 @@
 // independent, normal approximation, family-wise α = 0.001 (Šidák) per test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -583,43 +584,62 @@ double complex_fresnel(double c, double eta, double k) {
     return 0.5 * (std::norm(rs) + std::norm(rp));
 }
 
-}  // namespace
+/// \brief XYZ (Y-normalised) as a function of cos θ, tabulated at `n` even steps over
+/// [c0, 1] and interpolated linearly (the functions tabulated here are smooth: at steps of
+/// 0.01 the interpolation is within 3·10⁻⁵ of the rough plane's value, at 0.001 within
+/// h²/8·|F″|/F ≈ 10⁻⁷ of the smooth plane's).
+struct cos_table {
+    double c0 = 0.0, step = 1.0;
+    std::vector<std::array<double, 3>> v;
+    cos_table(double lo, int n, const std::function<std::array<double, 3>(double)>& f) : c0(lo), step((1.0 - lo) / (n - 1)) {
+        for (int i = 0; i < n; ++i) v.push_back(f(c0 + i * step));
+    }
+    double operator()(double c, std::size_t ch) const {
+        const double t = std::clamp((c - c0) / step, 0.0, static_cast<double>(v.size() - 1));
+        const auto i = std::min(static_cast<std::size_t>(t), v.size() - 2);
+        const double f = t - static_cast<double>(i);
+        return (1.0 - f) * v[i][ch] + f * v[i + 1][ch];
+    }
+};
 
-// A flat gold plane under a constant environment reflects F(θ, λ)·L(λ) toward each view
-// ray, θ the angle between the ray and the normal: every pixel's exact value is the box
-// mean of that over its footprint (8 × 8 sub-pixel rays), XYZ from the complex-amplitude
-// Fresnel above and the metal's tabulated η, k. Zones: four bands of view angle. Every
-// preset (the hero's η, k tables and the B term's bins); family: presets × 4 zones × 3
-// channels, α = 0.001.
-TEST(ConductorRender, EveryPresetReflectsTheExactFresnelOfAGoldPlane) {
+/// \brief Σ_λ F(x, η(λ), k(λ)) L(λ) cmf(λ) Δλ / ∫ȳ: XYZ of the environment reflected with
+/// the metal's Fresnel at incidence cos = x, by a 0.1 nm midpoint sum. (At 1 nm the sum
+/// missed the integral by 4·10⁻⁶ of Z — the tables' kinks sit inside its steps — which the
+/// smooth plane's propagating presets, with standard errors of 6·10⁻⁷, detected.)
+std::array<double, 3> fresnel_xyz(const iris::scene_desc& s, const iris::material::conductor_ior& ior, double x) {
+    std::array<double, 3> v{};
+    constexpr double step = 0.1;
+    for (double l = s.lambda_min + 0.5 * step; l < s.lambda_max; l += step) {
+        const double e = complex_fresnel(x, ior.eta(l), ior.k(l)) * s.environment->radiance(static_cast<float>(l)) * step;
+        v[0] += e * iris::cie::x_bar(l);
+        v[1] += e * iris::cie::y_bar(l);
+        v[2] += e * iris::cie::z_bar(l);
+    }
+    for (auto& c : v) c /= iris::cie::y_integral;
+    return v;
+}
+
+/// \brief Every preset renders a 3 × 3 conductor plane (material JSON `material`) under the
+/// constant D65 environment of luminance 1, seen from (0, 2.2, 2.2), against `exact`: the
+/// XYZ it reflects toward a view at cos θ. Zones: four bands of view angle; family:
+/// presets × 4 zones × 3 channels, α = 0.001.
+void expect_conductor_plane(const std::string& material, const std::function<std::array<double, 3>(const iris::scene_desc&, double)>& exact,
+                            int table_steps, int spp, const std::string& label) {
     const auto s = iris::scene::parse_scene(R"({"camera": {"position": [0, 2.2, 2.2], "look_at": [0, 0, 0], "fov": 60, "resolution": [48, 36]},
-      "materials": {"gold": {"type": "conductor", "metal": "Au"}},
+      "materials": {"metal": )" + material + R"(},
       "environment": {"spd": "D65", "luminance": 1.0},
-      "shapes": [{"type": "quad", "size": [3, 3], "material": "gold"}]})",
+      "shapes": [{"type": "quad", "size": [3, 3], "material": "metal"}]})",
                                             "light_render_test", ".");
-    const auto& m = std::get<iris::material::conductor>(s.materials.at(0));
-    ASSERT_TRUE(m.ior.has_value());
     const dvec3 o(s.camera.position);
+    const auto cos_of = [&](const dvec3& p) { return o.y / glm::length(o - p); };
     const auto zone_of = [&](const dvec3& p) {  // bands of cos θ
-        const double c = o.y / glm::length(o - p);
+        const double c = cos_of(p);
         return c < 0.62 ? 0 : (c < 0.72 ? 1 : (c < 0.82 ? 2 : 3));
     };
+    const cos_table table(0.4, table_steps, [&](double c) { return exact(s, c); });
     std::array<plane_truth, 3> truth;
-    for (std::size_t ch = 0; ch < 3; ++ch) {
-        truth[ch] = plane_exact(
-            s,
-            [&](const dvec3& p) {
-                const double c = o.y / glm::length(o - p);
-                double v = 0.0;
-                const double step = 1.0;
-                for (double l = s.lambda_min + 0.5 * step; l < s.lambda_max; l += step) {
-                    const double cmf = ch == 0 ? iris::cie::x_bar(l) : (ch == 1 ? iris::cie::y_bar(l) : iris::cie::z_bar(l));
-                    v += complex_fresnel(c, m.ior->eta(l), m.ior->k(l)) * s.environment->radiance(static_cast<float>(l)) * cmf * step;
-                }
-                return v / iris::cie::y_integral;
-            },
-            zone_of);
-    }
+    for (std::size_t ch = 0; ch < 3; ++ch)
+        truth[ch] = plane_exact(s, [&](const dvec3& p) { return table(cos_of(p), ch); }, zone_of);
     std::vector<std::array<double, 3>> want(4);
     std::vector<std::size_t> count(4);
     for (std::size_t i = 0; i < truth[0].zone.size(); ++i)
@@ -632,7 +652,13 @@ TEST(ConductorRender, EveryPresetReflectsTheExactFresnelOfAGoldPlane) {
         ASSERT_GE(count[z], 20u) << "zone " << z;
         for (auto& v : want[z]) v /= static_cast<double>(count[z]);
     }
-    const auto runs = every_preset(16, 512, 35);
+    auto runs = every_preset(16, spp, 35);
+    // the presets unbiased before N_thold are judged with the restriction never relaxed
+    // (N_thold far beyond the passes), so that the B term's bins — their η and k — carry
+    // every judged pass rather than the first 16 (no direction here depends on λ, so B is
+    // exact: docs/method.md)
+    for (auto& run : runs)
+        if (run.from == 0) run.opt.nthold = 1 << 20;
     const double z_max = iris_test::sidak_z(0.001, runs.size() * 4 * 3);
     std::printf("threshold |z| <= %.2f\n", z_max);
     double power = 0.0;
@@ -640,7 +666,76 @@ TEST(ConductorRender, EveryPresetReflectsTheExactFresnelOfAGoldPlane) {
         const auto est = iris_test::region_estimates(s, run.opt, 4, run.from, [&](int x, int y, int w, int) {
             return truth[0].zone[static_cast<std::size_t>(y * w + x)];
         });
-        power = std::max(power, check(est, want, z_max, "gold plane, " + run.name));
+        power = std::max(power, check(est, want, z_max, label + ", " + run.name));
     }
     report_power(power, 0.02);
+}
+
+const iris::material::conductor_ior& gold_index(const iris::scene_desc& s) {
+    return *std::get<iris::material::conductor>(s.materials.at(0)).ior;
+}
+
+}  // namespace
+
+// A flat gold plane under a constant environment reflects F(θ, λ)·L(λ) toward each view
+// ray, θ the angle between the ray and the normal: every pixel's exact value is the box
+// mean of that over its footprint (8 × 8 sub-pixel rays), XYZ from the complex-amplitude
+// Fresnel above and the metal's tabulated η, k. Every preset (the hero's η, k tables and
+// the B term's bins).
+TEST(ConductorRender, EveryPresetReflectsTheExactFresnelOfAGoldPlane) {
+    expect_conductor_plane(R"({"type": "conductor", "metal": "Au"})",
+                           [](const iris::scene_desc& s, double c) { return fresnel_xyz(s, gold_index(s), c); }, 601, 512, "gold plane");
+}
+
+namespace {
+
+/// \brief GGX in double, written from the formulas (Walter et al. 2007; Smith's
+/// height-correlated masking–shadowing, Heitz 2014), independently of iris's.
+double ggx_d(double cos_m, double a) {
+    const double c2 = cos_m * cos_m, t2 = (1.0 - c2) / c2, e = 1.0 + t2 / (a * a);
+    return 1.0 / (std::numbers::pi * a * a * c2 * c2 * e * e);
+}
+double ggx_lambda(double c, double a) {
+    const double t2 = (1.0 - c * c) / (c * c);
+    return 0.5 * (std::sqrt(1.0 + a * a * t2) - 1.0);
+}
+
+}  // namespace
+
+// A rough gold plane (GGX α = 0.3) under a constant environment L reflects toward a view at
+// cos θo = c its directional albedo times L: ∫ D(ωm) G(ωo, ωi) F(|ωo·ωm|, λ) / (4c) dωi over
+// the upper hemisphere, by a 512 × 256 midpoint rule in (cos θi, φi ∈ [0, π], doubled by
+// symmetry), with the Fresnel's XYZ tabulated in |ωo·ωm| (fresnel_xyz at 1025 steps),
+// tabulated in cos θo at steps of 0.01. The rule is within 10⁻⁵ of a 2048 × 1024 rule
+// (measured at cos θo = 0.45…0.995). Every preset: light sampling of the environment and BSDF sampling of the visible
+// normals, MIS-weighted, and the B term's 80 Fresnels per vertex.
+TEST(ConductorRender, EveryPresetReflectsTheDirectionalAlbedoOfARoughGoldPlane) {
+    constexpr double alpha = 0.3;
+    expect_conductor_plane(
+        R"({"type": "conductor", "metal": "Au", "roughness": 0.3})",
+        [](const iris::scene_desc& s, double c) {
+            static std::vector<std::array<double, 3>> phi;  // XYZ of F at |ωo·ωm| = j / 1024
+            if (phi.empty())
+                for (int j = 0; j <= 1024; ++j) phi.push_back(fresnel_xyz(s, gold_index(s), j / 1024.0));
+            const dvec3 wo(std::sqrt(1.0 - c * c), 0.0, c);
+            constexpr int nz = 512, np = 256;
+            std::array<double, 3> v{};
+            const double d_omega = (1.0 / nz) * (std::numbers::pi / np) * 2.0;
+            for (int i = 0; i < nz; ++i) {
+                const double z = (i + 0.5) / nz, r = std::sqrt(1.0 - z * z);
+                for (int j = 0; j < np; ++j) {
+                    const double p = std::numbers::pi * (j + 0.5) / np;
+                    const dvec3 wi(r * std::cos(p), r * std::sin(p), z);
+                    const dvec3 wm = glm::normalize(wo + wi);
+                    const double x = glm::dot(wo, wm) * 1024.0;
+                    const auto k = std::min(static_cast<std::size_t>(x), std::size_t{1023});
+                    const double f = x - static_cast<double>(k);
+                    const double g = 1.0 / (1.0 + ggx_lambda(c, alpha) + ggx_lambda(z, alpha));
+                    const double w = ggx_d(wm.z, alpha) * g / (4.0 * c) * d_omega;
+                    for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += w * ((1.0 - f) * phi[k][ch] + f * phi[k + 1][ch]);
+                }
+            }
+            return v;
+        },
+        61, 1024, "rough gold plane");
 }

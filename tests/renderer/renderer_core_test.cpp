@@ -41,8 +41,8 @@ std::vector<double> window_y(const iris::scene_desc& s, const options& o, int fr
 /// \brief E[Y] of `scaled-pdf` (linear relaxation, uniform base pdf) on the flat furnace
 /// over samples [from, to): F = F_R / Z_α weighs each λ by r_α/Z_α · p/p = r_α/∫r_α over
 /// the domain Λ, so E[Y]_α = Y · (∫ ȳ r_α / ∫ r_α) / (∫ ȳ / |Λ|) — Y = 5 only where the
-/// windows' mean ȳ equals the domain's (SPEC §3: "right brightness for flat spectra", flat
-/// meaning the integrand L·ȳ, not the emitter). α_i = i / N_thold, written out here.
+/// windows' mean ȳ equals the domain's (docs/method.md §2, Bias policies: "right brightness
+/// for flat spectra", flat meaning the integrand L·ȳ, not the emitter). α_i = i / N_thold, written out here.
 /// `preset` is `scaled-pdf` or `scaled-pdf-auto`; `windows` what renderer::windows reports
 /// for it on the furnace ("c:w,c:w,c:w"), so the automatic windows are the render's own.
 double scaled_pdf_furnace_y(const std::string& preset, const std::string& windows, int nthold, int from, int to) {
@@ -274,7 +274,7 @@ TEST(RendererCore, IdenticalPixelsForAnyThreadCountAndTiling) {
 }
 
 // The relaxation schedule the renderer runs: sample i of a pixel is drawn from p_α with
-// α = curve(i / N_thold), i = 0 first (SPEC §1), written out here for the linear, quadratic
+// α = curve(i / N_thold), i = 0 first (docs/method.md §1), written out here for the linear, quadratic
 // and constant curves.
 TEST(RendererCore, SampleIUsesAlphaOfIOverNthold) {
     const auto s = iris::test::furnace(0.8);

@@ -25,7 +25,7 @@ std::vector<double> pixel_y(const iris::film& f) {
 }
 
 // U1 for every sampler: Y = 5 on the white furnace (albedo 0.8) over the whole run, for
-// `hwss` and for `paper` (propagating: unbiased before N_thold too, SPEC U1). Family of 3 × 2
+// `hwss` and for `paper` (propagating: unbiased before N_thold too, docs/method.md §4, U1). Family of 3 × 2
 // at family-wise α = 0.01 (Šidák). The standard error is the spread of the pixels over √n:
 // exact for `independent` and `sobol` (every pixel scrambled on its own), conservative for
 // `zsobol`, whose neighbouring pixels share one net and so err in opposite directions. Each

@@ -1,4 +1,4 @@
-// Statistical properties of the method on real scenes (SPEC U1, U2, U3; convergence rate).
+// Statistical properties of the method on real scenes (docs/method.md §4: U1, U2, U3; convergence rate).
 // Fixed seeds throughout; every threshold is derived from a stated confidence level.
 #include <gtest/gtest.h>
 

@@ -19,7 +19,7 @@ struct named {
     T value;
 };
 
-/// \brief The kernels under test: the defaults, and the edge cases SPEC §4 asks for
+/// \brief The kernels under test: the defaults, and the edge cases docs/method.md §5 asks for
 /// (a window at the domain edge, a width-0 box, overlapping windows, a tiny σ).
 inline auto kernels() {
     using namespace iris::restriction;

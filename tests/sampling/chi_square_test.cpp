@@ -1,6 +1,6 @@
-// Goodness of fit of `sample` against `pdf` (SPEC §4): for every kernel × base pdf at
+// Goodness of fit of `sample` against `pdf` (docs/method.md §5): for every kernel × base pdf at
 // α ∈ {0, 0.3, 1}, and for each of the C hero-rotated wavelengths separately (each must
-// be marginally p_α-distributed, SPEC §2).
+// be marginally p_α-distributed, docs/method.md §3).
 //
 // Method: N = 100 000 draws (fixed seeds) histogrammed into 457 equal bins over the
 // range where p_α > 0; expected counts are N ∫_bin pdf, exact from the distribution's

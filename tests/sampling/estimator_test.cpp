@@ -1,4 +1,4 @@
-// The spectral-level estimator (SPEC §2–§3, U1 without a path): for smooth integrands
+// The spectral-level estimator (docs/method.md §3–§4, U1 without a path): for smooth integrands
 // f(λ) — CMFs times smooth spectra, as a pixel's integrand is — the mean of N samples of
 //     F = Σ_j r_α(λ_j) f(λ_j) w_j + B,   w_j = 1 / (p_α(λ_j) Σ_k p(x̄|λ_k)),  p(x̄|λ) ≡ 1
 // must equal ∫Λ f for `propagate_unused` at every α (and for plain HWSS); `none` must
@@ -285,7 +285,7 @@ TEST(SpectralEstimator, BTermVanishesFromNtholdOn) {
 
 TEST(SpectralEstimator, PapersEq4IsBiasedForANonUniformPdf) {
     // Eq. 4 of the paper: w_j = 1 / Σ_k p_α(λ_k) p(x̄|λ_k), here with p(x̄|λ) ≡ 1. It agrees
-    // with SPEC's weight when p_α is uniform and is biased otherwise.
+    // with the weight of docs/method.md §3 when p_α is uniform and is biased otherwise.
     auto eq4 = [](const auto& dist, std::uint64_t seed) {
         iris::test::running_stats st;
         iris::counter_rng rng(seed);
@@ -306,7 +306,7 @@ TEST(SpectralEstimator, PapersEq4IsBiasedForANonUniformPdf) {
     const auto biased = eq4(visible, 12);
     EXPECT_LT(p_value(biased, full), per_test_alpha())
         << "Eq. 4 with the visible pdf: mean " << biased.mean << " ± " << biased.standard_error() << " vs ∫ " << full;
-    // and SPEC's weight on the same draws is unbiased
+    // and the weight of docs/method.md §3 on the same draws is unbiased
     EXPECT_GE(p_value(estimate<bias::none, 4>(visible, f_y_wave, 12), full), per_test_alpha());
 }
 

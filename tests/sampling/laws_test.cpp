@@ -1,4 +1,4 @@
-// The laws of SPEC §1 and §4 for every kernel × base pdf × domain, at α ∈ {0, 1e-6, 0.5,
+// The laws of docs/method.md §1 and the checks of its §5 for every kernel × base pdf × domain, at α ∈ {0, 1e-6, 0.5,
 // 1 − 1e-6, 1} and at the domain edges: r_1 ≡ 1, r monotone in α, Z_α > 0, p_α ≥ 0,
 // finite and of mass 1 (1e-5), pdf(sample(u)) > 0 for u = 0, 1 − ε and random u, every
 // sample inside the restriction; plus the degenerate cases (width-0 boxes, windows

@@ -1,6 +1,6 @@
 // Automatic window placement (iris/sampling/placement.hpp): the windows it chooses for every
 // built-in illuminant, blackbodies and 100 random tabulated spectra (fixed seed) obey the
-// laws of SPEC §1 and the placement's own constraints; narrow emission lines end up inside
+// laws of docs/method.md §1 and the placement's own constraints; narrow emission lines end up inside
 // windows; the hand placement never scores better on a built-in illuminant; the result is a
 // local optimum of J; degenerate spectra (no signal, one channel dark) are handled.
 #include <algorithm>
@@ -36,7 +36,7 @@ placed place(const std::function<double(double)>& e, const spectral_domain& d = 
 /// \brief A narrow emission line: a Gaussian of σ nm at c nm.
 double line(double l, double c, double sigma) { return std::exp(-0.5 * (l - c) * (l - c) / (sigma * sigma)); }
 
-/// \brief The placement's constraints and the laws of SPEC §1 for the multi_box it gives.
+/// \brief The placement's constraints and the laws of docs/method.md §1 for the multi_box it gives.
 void check_windows(const placed& w, const spectral_domain& d, const std::string& what) {
     SCOPED_TRACE(what);
     const double cell = (static_cast<double>(d.max_nm) - d.min_nm) / placement::cells;
@@ -59,7 +59,7 @@ void check_windows(const placed& w, const spectral_domain& d, const std::string&
             EXPECT_GE(c, -1e-12);
             EXPECT_LE(c, 1.0 + 1e-12);
         }
-    // SPEC §1: r_1 ≡ 1 on Λ, r_α non-decreasing in α, ∫ p r_α > 0 (a distribution that
+    // docs/method.md §1: r_1 ≡ 1 on Λ, r_α non-decreasing in α, ∫ p r_α > 0 (a distribution that
     // puts its mass inside the windows at α = 0)
     restriction::multi_box<3> k;
     k.centres_nm = w.centres_nm;

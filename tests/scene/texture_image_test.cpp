@@ -1,6 +1,7 @@
 // Reflectance textures read when the scene is built (docs/scene-format.md#diffuse): the
 // errors a bad texture gives (file, line, pointer, what was wrong), sRGB decoding of 8-bit
-// images, clamping reported (never silent), and the fingerprint seeing the texels.
+// images, clamping reported (never silent), and the fingerprint seeing the texels; and the
+// normals and uvs a mesh file brings.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,8 @@
 #include <string>
 
 #include <unistd.h>
+
+#include <glm/geometric.hpp>
 
 #include <iris/exr/exr.hpp>
 #include <iris/render/texture.hpp>
@@ -157,4 +160,55 @@ TEST(TextureImage, FingerprintSeesTheTexture) {
     const auto p = iris::scene::fingerprint(plain);
     plain.shapes[0].mesh.uvs[0].x += 0.25f;
     EXPECT_EQ(p, iris::scene::fingerprint(plain));
+}
+
+// A mesh file's normals and uvs reach the scene (docs/scene-format.md, shapes): the uvs as
+// written, the normals carried through the shape's transform by its inverse transpose
+// (perpendicular to the transformed surface, whatever the scale); a broken normal is an
+// error naming the scene file, its line and the mesh file.
+TEST(MeshAttributes, ReachTheSceneThroughTheTransform) {
+    const temp_dir dir;
+    {
+        std::ofstream out(dir.path / "tri.ply");
+        out << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float nz\nproperty float u\nproperty float v\n"
+               "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+               "0 0 0 1 0 1 0 0\n1 0 0 0 0 1 1 0\n0 1 0 0 0 1 0.25 1\n3 0 1 2\n";
+    }
+    {
+        std::ofstream out(dir.path / "bad.ply");
+        out << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float nz\n"
+               "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+               "0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n3 0 1 2\n";
+    }
+    const auto scene = [](const std::string& file) {
+        return R"({"camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
+  "materials": {"m": {"type": "diffuse", "reflectance": 0.5}},
+  "environment": {"spd": "D65"},
+  "shapes": [{"type": "mesh", "file": ")" +
+               file + R"(", "material": "m",
+              "transform": [{"scale": [3, 1, 1]}, {"rotate": {"axis": [1, 0, 0], "degrees": 90}}]}]})";
+    };
+    const auto s = iris::scene::parse_scene(scene("tri.ply"), "mesh.json", dir.path);
+    const auto& m = s.shapes.at(0).mesh;
+    ASSERT_EQ(m.normals.size(), 3u);
+    ASSERT_EQ(m.uvs.size(), 3u);
+    EXPECT_EQ(m.uvs[2], glm::vec2(0.25f, 1.0f));
+    // scale x by 3, then rotate +90° about x: (1, 0, 1) → (1/3, 0, 1) → (1/3, −1, 0), up to length
+    const glm::vec3 n0 = glm::normalize(m.normals[0]);
+    const glm::vec3 want = glm::normalize(glm::vec3(1.0f / 3.0f, -1.0f, 0.0f));
+    EXPECT_NEAR(glm::length(n0 - want), 0.0f, 1e-5f) << n0.x << " " << n0.y << " " << n0.z;
+    const glm::vec3 e1 = m.positions[1] - m.positions[0], e2 = m.positions[2] - m.positions[0];
+    EXPECT_NEAR(glm::dot(glm::normalize(m.normals[1]), glm::normalize(e1)), 0.0f, 1e-5f);  // still perpendicular
+    EXPECT_NEAR(glm::dot(glm::normalize(m.normals[1]), glm::normalize(e2)), 0.0f, 1e-5f);
+    try {
+        (void)iris::scene::parse_scene(scene("bad.ply"), "mesh.json", dir.path);
+        ADD_FAILURE() << "a zero normal must be an error";
+    } catch (const iris::scene::error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("mesh.json:"), std::string::npos) << what;
+        EXPECT_NE(what.find("bad.ply"), std::string::npos) << what;
+        EXPECT_NE(what.find("vertex 1 has a zero normal"), std::string::npos) << what;
+    }
 }

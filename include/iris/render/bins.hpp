@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief Spectra tabulated on the lattice of the B term's bins (SPEC §3), so that one
+/// \brief Spectra tabulated on the lattice of the B term's bins (docs/method.md §2, Bias policies), so that one
 /// spectrum at all bins of a sample costs two contiguous rows blended — a vectorisable
 /// loop, with no per-wavelength table search, division or Sellmeier evaluation.
 ///
@@ -15,7 +15,7 @@
 /// K = 15; 8 bins: K = 50). Linear interpolation on the lattice then equals a table's own
 /// linear interpolation for every table whose knots lie on whole nm (all of iris's data,
 /// sRGB-upsampled reflectances, and any 1 nm or 5 nm table) — the B term stays exactly the
-/// SPEC's estimator. A tabulated spectrum that the lattice would not reproduce (knots off
+/// estimator of docs/method.md §3. A tabulated spectrum that the lattice would not reproduce (knots off
 /// the lattice, a step inside the domain) is evaluated directly at the bins' wavelengths
 /// instead: slower, exact. The one approximation left is the refractive index of dispersive
 /// glass (Cauchy, Sellmeier: smooth curves, not tables), and η² and 1/η² for Fresnel,

@@ -87,6 +87,7 @@ public:
             }
             if (depth >= m_settings.max_depth) break;
             const material_desc& mat = m_scene.materials[shape.material];
+            rng.start_bounce(depth);              // the bounce's slots (render/random.hpp; a no-op for `independent`)
             const glm::vec2 u_dir = rng.next2();  // drawn in this order since the first release
             const float u_lobe = rng.next();
             const auto bs = bsdf_sample_hero(mat, si->shading, wo, wl, u_lobe, u_dir, texture_weights(m_scene, mat, si->uv));

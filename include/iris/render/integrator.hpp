@@ -2,10 +2,10 @@
 /// \file
 /// \brief `path_integrator<Config, Bins>`: unidirectional spectral path tracing with
 /// next-event estimation, MIS between BSDF and light sampling, Russian roulette, C
-/// hero-rotated wavelengths with the corrected HWSS MIS weight (SPEC §2), and the
-/// config's bias policy (SPEC §3).
+/// hero-rotated wavelengths with the corrected HWSS MIS weight (docs/method.md §3, fix 1 in §4), and the
+/// config's bias policy (docs/method.md §2, Bias policies).
 ///
-/// Estimator per sample (SPEC): F = F_R (÷ Z_α for ScaledPdf) + B (PropagateUnused).
+/// Estimator per sample (docs/method.md §3): F = F_R (÷ Z_α for ScaledPdf) + B (PropagateUnused).
 ///   F_R = Σ_j r_α(λ_j) f(x̄, λ_j) / (p_α(λ_j) Σ_k p(x̄ | λ_k)),
 /// where p(x̄ | λ_k) sums over the two strategies that can make the last vertex (BSDF
 /// sampling and light sampling): the balance heuristic over C wavelengths × 2 strategies.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief The B term of one path (SPEC §3), as one component: `propagation<Bins>` for the
+/// \brief The B term of one path (docs/method.md §3), as one component: `propagation<Bins>` for the
 /// bias policies that propagate, `no_propagation` (every step a no-op the compiler drops)
 /// for the others. The path integrator calls its steps where the hero path makes them:
 ///
@@ -113,7 +113,7 @@ public:
     }
     /// \brief Would light from there reach B? A surface black at every hero wavelength
     /// (say, inside the windows) may still reflect at the bins, and B must keep its
-    /// light-sampling share there (SPEC U1).
+    /// light-sampling share there (docs/method.md §4, U1).
     template <class B>
     bool receives_light() const noexcept {
         if constexpr (separable_bxdf<B>) return m_on && m_cos != 0.0f && !m_refl.is_zero();

@@ -36,7 +36,12 @@
 /// | 7 + 5k | bounce k: Russian roulette | 1-D |
 ///
 /// `start_bounce(k)` moves to slot 3 + 5k, so a slot skipped (no B term, no next-event
-/// estimation at a delta vertex) never shifts the slots after it. The `independent`
+/// estimation at a delta vertex) never shifts the slots after it. A bounce (or the camera
+/// part, slots 0–2) that draws more than its slots does not read the next bounce's: its
+/// extra draws come from slots of its own past the table (`overflow_slot`), padded as the
+/// slots past bounce 50 are — never a number another draw of the sample reads, at the cost
+/// of their stratification (`overflows()` counts the bounces that overflowed; the path
+/// tracer never does, tests/render/sampler_test.cpp). The `independent`
 /// sampler ignores the layout and numbers its draws consecutively, as iris always did: its
 /// images are the ones of the releases before the samplers.
 ///
@@ -127,10 +132,17 @@ public:
         }
     }
 
+    /// \brief Where the extra draws of bounce k (k = −1: the camera's slots) go: 2¹⁶ slots
+    /// of its own, far past every bounce's (bounce k's first slot is 3 + 5k < 2³¹ for any
+    /// path length a render allows), read as padded slots.
+    static constexpr std::uint32_t overflow_slot(int k) noexcept {
+        return 0x80000000u + (static_cast<std::uint32_t>(k + 1) << 16);
+    }
+
     /// \brief The next 1-D slot, in [0, 1).
     constexpr float next() noexcept {
         if (m_kind == sampler_kind::independent) return m_rng.next();
-        const point p = at(m_slot++, false);
+        const point p = at(take(), false);
         return p.x;
     }
 
@@ -140,23 +152,38 @@ public:
             const float a = m_rng.next();
             return {a, m_rng.next()};
         }
-        const point p = at(m_slot++, true);
+        const point p = at(take(), true);
         return {p.x, p.y};
     }
 
     /// \brief Move to bounce k's first slot (a no-op for `independent`).
     constexpr void start_bounce(int k) noexcept {
-        if (m_kind != sampler_kind::independent)
+        if (m_kind != sampler_kind::independent) {
             m_slot = first_bounce_slot + slots_per_bounce * static_cast<std::uint32_t>(k);
+            m_end = m_slot + slots_per_bounce;
+            m_bounce = k;
+        }
     }
 
     /// \brief The slot the next draw reads (low-discrepancy samplers).
     constexpr std::uint32_t slot() const noexcept { return m_slot; }
+    /// \brief How many bounces (or the camera part) drew past their slots (low-discrepancy samplers).
+    constexpr std::uint32_t overflows() const noexcept { return m_overflows; }
 
 private:
     struct point {
         float x, y;
     };
+    /// \brief The slot of the next draw: the next of the bounce's own, or past them its
+    /// overflow slots.
+    constexpr std::uint32_t take() noexcept {
+        if (m_slot == m_end) [[unlikely]] {
+            m_slot = overflow_slot(m_bounce);
+            m_end = m_slot + 0x10000u;
+            ++m_overflows;
+        }
+        return m_slot++;
+    }
     /// \brief Slot `slot`'s point: the slot's Sobol' dimension d (data/sobol_slots.hpp; the
     /// pixel slot: d = 0) of the stream's shuffled index, with its (0, 2) partner for a 2-D slot (sobol::paired), each
     /// coordinate Owen-scrambled with its own seed. Past the table of dimensions, `padded`.
@@ -187,6 +214,9 @@ private:
     counter_rng m_rng;
     sampler_kind m_kind = sampler_kind::independent;
     std::uint32_t m_slot = 0;
+    std::uint32_t m_end = first_bounce_slot;  ///< one past the current bounce's last slot
+    int m_bounce = -1;                        ///< -1: the camera's slots
+    std::uint32_t m_overflows = 0;
     std::uint64_t m_sample = 0;  ///< sobol: the sample index; zsobol: the Morton-ordered index
     std::uint64_t m_index = 0;   ///< the index shuffled once for all slots (zsobol: 64 bits)
     std::uint64_t m_key = 0;

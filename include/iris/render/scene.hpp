@@ -56,6 +56,10 @@ inline bool is_dispersive(const ior_model& m) noexcept {
     return true;
 }
 
+/// \brief Below this GGX α a rough dielectric or conductor is treated as smooth (numerically a
+/// delta BSDF).
+inline constexpr float smooth_alpha = 1e-3f;
+
 namespace material {
 
 /// \brief Lambertian reflector with spectral albedo in [0, 1]: `reflectance`, or, with
@@ -79,12 +83,14 @@ struct conductor_ior {
     tabulated_spectrum eta, k;
 };
 
-/// \brief Perfect specular reflector (mirror, polished metal): with `ior`, the exact
-/// Fresnel reflectance of a conductor of complex index η + ik at every angle; without
-/// it, the angle-independent spectral `reflectance` (an idealised mirror).
+/// \brief A metal (or mirror): with `ior`, the exact Fresnel reflectance of a conductor of
+/// complex index η + ik at every angle; without it, the angle-independent spectral
+/// `reflectance` (an idealised mirror). roughness = 0: a perfect specular reflector (a
+/// delta BSDF); roughness > 0: GGX microfacet reflection with α = roughness.
 struct conductor {
     tabulated_spectrum reflectance;
     std::optional<conductor_ior> ior = std::nullopt;
+    float roughness = 0.0f;
 };
 
 }  // namespace material
@@ -196,7 +202,9 @@ struct environment_desc {
     std::array<tabulated_spectrum, 3> basis;  ///< with `map` only: red, green, blue emission spectra
 };
 
-/// \brief What a scene contains, so the renderer instantiates only what it needs.
+/// \brief What a scene contains, for the tools and the tests (`iris-scene info` prints it).
+/// The renderer does not read it: it compiles one instantiation per preset and instruction
+/// set, whatever the scene holds.
 struct scene_features {
     bool dispersive_specular = false;  ///< a smooth dielectric with λ-dependent n
     bool dispersive_rough = false;     ///< a rough dielectric with λ-dependent n
@@ -239,13 +247,13 @@ struct scene_desc {
             if (!used[i]) continue;
             if (const auto* d = std::get_if<material::dielectric>(&materials[i])) {
                 const bool disp = is_dispersive(d->ior);
-                if (d->roughness > 0.0f) f.dispersive_rough |= disp;
+                if (d->roughness >= smooth_alpha) f.dispersive_rough |= disp;
                 else {
                     f.dispersive_specular |= disp;
                     f.has_specular = true;
                 }
-            } else if (std::holds_alternative<material::conductor>(materials[i])) {
-                f.has_specular = true;
+            } else if (const auto* c = std::get_if<material::conductor>(&materials[i])) {
+                f.has_specular |= c->roughness < smooth_alpha;
             }
         }
         auto add = [&](const std::string& n) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief `spectral_domain`: the wavelength interval Λ = [min_nm, max_nm] that a render
-/// integrates over (SPEC §1). Default 380–780 nm; the paper used 400–700 nm.
+/// integrates over (docs/method.md §1). Default 380–780 nm; the paper used 400–700 nm.
 
 namespace iris {
 

@@ -4,14 +4,14 @@
 /// path-independent integrand (p(x̄ | λ) ≡ 1) — the combination the integrator forms per
 /// path, through the same functions (`restricted_factor`, `hwss_ratio_sum`), with the path
 /// factors taken out, so that a policy's claims can be
-/// tested at the spectral level (SPEC U1: E[F] = ∫ f for `propagate_unused` at every α).
+/// tested at the spectral level (docs/method.md §4, U1: E[F] = ∫ f for `propagate_unused` at every α).
 ///
 ///     F_R = Σ_j r_α(λ_j) f(λ_j) / (p_α(λ_j) · C)        (÷ Z_α for `scaled_pdf`)
 ///     B   = Σ_b (1 − r_α(λ_b)) f(λ_b) Δλ_b              (`propagate_unused` only)
 ///
 /// E[F_R] = ∫ r_α f (÷ Z_α) because each λ_j is marginally p_α-distributed and
 /// r_α f / p_α vanishes wherever p_α does; E[B] = ∫ (1 − r_α) f because λ_b is uniform in
-/// its bin. Their sum is ∫ f: r and 1 − r partition unity (SPEC §3's r(λ) factor).
+/// its bin. Their sum is ∫ f: r and 1 − r partition unity (the r(λ) factor, docs/method.md §4, fix 2).
 
 #include <cstddef>
 

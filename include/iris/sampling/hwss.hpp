@@ -1,11 +1,11 @@
 #pragma once
 /// \file
-/// \brief Hero wavelength sampling with a restricted pdf (SPEC §2): the rotation of the
+/// \brief Hero wavelength sampling with a restricted pdf (docs/method.md §3): the rotation of the
 /// hero's primary sample and the MIS weight of wavelength j.
 ///
 ///     F_R = Σ_j r_α(λ_j) f(x̄, λ_j) · w_j,   w_j = 1 / (p_α(λ_j) · Σ_k p(x̄ | λ_k))
 ///
-/// **[SPEC fix]** p_α(λ_j) stands outside the sum over k. The paper's Eq. 4 puts
+/// **[fix 1, docs/method.md §4]** p_α(λ_j) stands outside the sum over k. The paper's Eq. 4 puts
 /// p_α(λ_k) inside it, which is the same only when p_α is uniform: the rotation
 /// u_j = frac(u + j/C) preserves p_α(λ) dλ, not dλ, so the balance heuristic over the C
 /// rotations compares the path densities p(x̄ | λ_k) alone. tests/sampling keeps the
@@ -29,7 +29,7 @@ constexpr double hwss_rotation(float u, std::size_t j, std::size_t C) noexcept {
     return x >= 1.0 ? x - 1.0 : x;
 }
 
-/// \brief w_j = 1 / (p_α(λ_j) Σ_k p(x̄ | λ_k)) (SPEC §2). Non-positive or NaN path pdfs
+/// \brief w_j = 1 / (p_α(λ_j) Σ_k p(x̄ | λ_k)) (docs/method.md §3). Non-positive or NaN path pdfs
 /// count as 0 (a terminated secondary wavelength); the weight is 0 — never NaN or Inf —
 /// when p_α(λ_j) ≤ 0, the sum is 0, or the weight would overflow.
 inline float hwss_mis_weight(float restricted_pdf_j, std::span<const float> path_pdfs) noexcept {

@@ -9,7 +9,7 @@
 /// | `none` | plain HWSS, or to switch a restricting preset off | nothing | none (α ≡ 1) |
 ///
 /// The running mean keeps every sample, so whatever bias the first N_thold samples carry
-/// decays as N_thold / N afterwards (SPEC §3).
+/// decays as N_thold / N afterwards (docs/method.md §2, Bias fade).
 
 #include "iris/sampling/relaxation/concept.hpp"
 #include "iris/sampling/relaxation/curves.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief `restricted_distribution`: p_α(λ) = p(λ) r_α(λ) / Z_α on Λ (SPEC §1), sampled
-/// by an exact inverse CDF, and its hero-rotated C-wavelength draw (SPEC §2).
+/// \brief `restricted_distribution`: p_α(λ) = p(λ) r_α(λ) / Z_α on Λ (docs/method.md §1), sampled
+/// by an exact inverse CDF, and its hero-rotated C-wavelength draw (docs/method.md §3).
 ///
 /// Representation: piecewise constant on cells. Λ is cut into a uniform grid of at most
 /// `max_grid_cells` cells (default 1 nm); the support of r_α (the kernel's intervals) is

@@ -93,7 +93,7 @@ private:
 /// Index 0 is the hero wavelength: it alone chooses directions. At a specular dispersive
 /// event the others do not die here (pbrt-v4 zeroes their wavelength pdfs): the BxDF
 /// gives them zero f and zero p(ωi | λ_k), so their MIS ratios and contributions vanish
-/// (iris/render/materials/smooth_dielectric.hpp, SPEC §2).
+/// (iris/render/materials/smooth_dielectric.hpp, docs/method.md §3).
 template <std::size_t N>
     requires(N >= 1)
 class sampled_wavelengths {

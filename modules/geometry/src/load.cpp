@@ -4,17 +4,20 @@
 // so a broken file could neither fail safely nor say what is wrong. These readers grow as
 // they read, check every bound and name the line (text) or element (binary) at fault.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <tiny_obj_loader.h>
 
 #include "iris/geometry/triangle_mesh.hpp"
@@ -29,6 +32,8 @@ namespace fs = std::filesystem;
 // vector per polygon cost 10 M heap blocks and ~0.7 GB for a 10 M-triangle mesh.
 struct soup {
     std::vector<glm::dvec3> positions;
+    std::vector<glm::dvec3> normals;  ///< empty, or one per position
+    std::vector<glm::dvec2> uvs;      ///< empty, or one per position
     std::vector<long long> indices;
     std::vector<std::size_t> ends;
 
@@ -119,11 +124,18 @@ soup read_off(const fs::path& path, std::string_view text) {
     std::vector<std::string_view> tok;
     if (!lines.next(tok)) fail(path, "empty file (expected an OFF header)");
     // OFF with optional prefixes for texture (ST), colour (C) and normal (N) data, which
-    // follow x y z on each vertex line and are ignored here.
+    // follow x y z on each vertex line. Colours are not used (materials are the scene's);
+    // normals and texture coordinates would be, so a file that has them is refused rather
+    // than rendered without them (PLY and OBJ carry them: docs/scene-format.md).
     const std::string_view key = tok[0];
+    const std::string_view prefix = key.size() >= 3 ? key.substr(0, key.size() - 3) : std::string_view{};
     const bool off_key = key.size() >= 3 && key.substr(key.size() - 3) == "OFF" &&
-                         key.substr(0, key.size() - 3).find_first_not_of("STCN") == std::string_view::npos;
+                         prefix.find_first_not_of("STCN") == std::string_view::npos;
     if (!off_key) fail(path, at_line(lines.line()) + "expected the OFF header keyword, got '" + std::string(key) + "'");
+    if (prefix.find_first_of("STN") != std::string_view::npos)
+        fail(path, at_line(lines.line()) + "'" + std::string(key) +
+                       "': the normals and texture coordinates of OFF files are not read; use PLY or OBJ for them "
+                       "(or plain OFF / COFF without them)");
     if (tok.size() > 1 && tok[1] == "BINARY") fail(path, "binary OFF is not supported (use ASCII OFF or PLY)");
     std::vector<std::string_view> counts(tok.begin() + 1, tok.end());
     if (counts.empty()) {
@@ -339,15 +351,37 @@ soup read_ply(const fs::path& path, std::string_view text) {
     for (const ply_element& e : elements) {
         const bool is_vertex = e.name == "vertex";
         const bool is_face = e.name == "face";
-        int xyz[3] = {-1, -1, -1};
+        int xyz[3] = {-1, -1, -1}, normal[3] = {-1, -1, -1}, uv[2] = {-1, -1};
         int indices = -1;
+        // the names of texture coordinates in the wild: u v (pbrt-v4's writer), s t, texture_u/v, texture_s/t
+        static constexpr const char* uv_names[4][2] = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
         for (std::size_t k = 0; k < e.properties.size(); ++k) {
             const auto& p = e.properties[k];
-            for (int c = 0; c < 3; ++c)
-                if (is_vertex && !p.is_list && p.name == std::string(1, static_cast<char>('x' + c))) xyz[c] = static_cast<int>(k);
+            const auto at = static_cast<int>(k);
+            if (is_vertex && !p.is_list) {
+                for (int c = 0; c < 3; ++c) {
+                    if (p.name == std::string(1, static_cast<char>('x' + c))) xyz[c] = at;
+                    if (p.name == "n" + std::string(1, static_cast<char>('x' + c))) normal[c] = at;
+                }
+                for (const auto& names : uv_names)
+                    for (int c = 0; c < 2; ++c)
+                        if (p.name == names[c]) {
+                            if (uv[c] >= 0)
+                                fail(path, "the 'vertex' element has two texture coordinates for " + std::string(c ? "v" : "u") +
+                                               " ('" + e.properties[static_cast<std::size_t>(uv[c])].name + "' and '" + p.name + "')");
+                            uv[c] = at;
+                        }
+            }
             if (is_face && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) indices = static_cast<int>(k);
         }
         if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) fail(path, "the 'vertex' element lacks x, y or z");
+        const bool has_normal = normal[0] >= 0 || normal[1] >= 0 || normal[2] >= 0;
+        if (has_normal && (normal[0] < 0 || normal[1] < 0 || normal[2] < 0))
+            fail(path, "the 'vertex' element has some of the normal's nx, ny, nz but not all three");
+        const bool has_uv = uv[0] >= 0 || uv[1] >= 0;
+        if (has_uv && (uv[0] < 0 || uv[1] < 0))
+            fail(path, "the 'vertex' element has one texture coordinate ('" +
+                           e.properties[static_cast<std::size_t>(uv[0] >= 0 ? uv[0] : uv[1])].name + "') without the other");
         if (is_face && indices < 0) fail(path, "the 'face' element lacks a 'vertex_indices' list");
         have_vertices = have_vertices || is_vertex;
         have_faces = have_faces || is_face;
@@ -360,7 +394,8 @@ soup read_ply(const fs::path& path, std::string_view text) {
             fail(path, "element '" + e.name + "' has " + std::to_string(e.count) + " instances but no properties");
         for (unsigned long long i = 0; i < e.count; ++i) {
             values.begin_item(e.name, i);
-            glm::dvec3 p(0.0);
+            glm::dvec3 p(0.0), nrm(0.0);
+            glm::dvec2 t(0.0);
             poly.clear();
             for (std::size_t k = 0; k < e.properties.size(); ++k) {
                 const auto& prop = e.properties[k];
@@ -378,12 +413,20 @@ soup read_ply(const fs::path& path, std::string_view text) {
                     }
                 } else {
                     const double v = values.read(prop.type);
-                    for (int c = 0; c < 3; ++c)
+                    for (int c = 0; c < 3; ++c) {
                         if (static_cast<int>(k) == xyz[c]) p[c] = v;
+                        if (static_cast<int>(k) == normal[c]) nrm[c] = v;
+                    }
+                    for (int c = 0; c < 2; ++c)
+                        if (static_cast<int>(k) == uv[c]) t[c] = v;
                 }
             }
             values.end_item();
-            if (is_vertex) s.positions.push_back(p);
+            if (is_vertex) {
+                s.positions.push_back(p);
+                if (has_normal) s.normals.push_back(nrm);
+                if (has_uv) s.uvs.push_back(t);
+            }
             if (is_face) s.add_polygon(poly);
         }
     }
@@ -411,19 +454,70 @@ soup read_obj(const fs::path& path, const std::string& text) {
     if (reader.Warning().find("Degenerated face") != std::string::npos)
         fail(path, "a face with fewer than 3 vertices");
     soup s;
-    const auto& v = reader.GetAttrib().vertices;
+    const auto& attrib = reader.GetAttrib();
+    const auto& v = attrib.vertices;
     for (std::size_t i = 0; i + 2 < v.size(); i += 3)
         s.positions.emplace_back(static_cast<double>(v[i]), static_cast<double>(v[i + 1]), static_cast<double>(v[i + 2]));
+    // Normals (vn) and texture coordinates (vt) are indexed per face corner, apart from the
+    // positions: every corner has them or none does (a mesh half with normals would be
+    // shaded half smooth), and a mesh with them gets one vertex per distinct
+    // (position, normal, uv) triple. Without them the positions stay as in the file.
+    bool any_normal = false, any_uv = false, all_normal = true, all_uv = true;
+    for (const auto& shape : reader.GetShapes())
+        for (const auto& c : shape.mesh.indices) {
+            if (c.normal_index >= 0) any_normal = true;
+            else all_normal = false;
+            if (c.texcoord_index >= 0) any_uv = true;
+            else all_uv = false;
+        }
+    if (any_normal && !all_normal) fail(path, "some face corners have a normal (v//vn or v/vt/vn) and some do not");
+    if (any_uv && !all_uv) fail(path, "some face corners have texture coordinates (v/vt) and some do not");
+    const auto nn = static_cast<long long>(attrib.normals.size() / 3), nt = static_cast<long long>(attrib.texcoords.size() / 2);
+    std::vector<glm::dvec3> positions;  // split per distinct triple when there are normals or uvs
+    std::map<std::array<long long, 3>, long long> split;
+    std::size_t face = 0;
     for (const auto& shape : reader.GetShapes()) {
         const auto& m = shape.mesh;
         std::size_t at = 0;
         for (const unsigned n : m.num_face_vertices) {
             if (at + n > m.indices.size()) fail(path, "OBJ face data is inconsistent");
-            for (std::size_t k = 0; k < n; ++k) s.indices.push_back(m.indices[at + k].vertex_index);
+            for (std::size_t k = 0; k < n; ++k) {
+                const auto& c = m.indices[at + k];
+                if (!any_normal && !any_uv) {
+                    s.indices.push_back(c.vertex_index);
+                    continue;
+                }
+                if (c.vertex_index < 0 || c.vertex_index >= static_cast<long long>(s.positions.size()))
+                    fail(path, "face " + std::to_string(face) + " refers to vertex " + std::to_string(c.vertex_index) +
+                                   ", but there are " + std::to_string(s.positions.size()) + " vertices (index out of range)");
+                if (any_normal && c.normal_index >= nn)
+                    fail(path, "face " + std::to_string(face) + " refers to normal " + std::to_string(c.normal_index) +
+                                   ", but there are " + std::to_string(nn) + " normals (vn; index out of range)");
+                if (any_uv && c.texcoord_index >= nt)
+                    fail(path, "face " + std::to_string(face) + " refers to texture coordinate " + std::to_string(c.texcoord_index) +
+                                   ", but there are " + std::to_string(nt) + " (vt; index out of range)");
+                const std::array<long long, 3> key{c.vertex_index, any_normal ? c.normal_index : -1, any_uv ? c.texcoord_index : -1};
+                const auto [it, added] = split.try_emplace(key, static_cast<long long>(positions.size()));
+                if (added) {
+                    positions.push_back(s.positions[static_cast<std::size_t>(c.vertex_index)]);
+                    if (any_normal) {
+                        const auto i = static_cast<std::size_t>(3 * c.normal_index);
+                        s.normals.emplace_back(static_cast<double>(attrib.normals[i]), static_cast<double>(attrib.normals[i + 1]),
+                                               static_cast<double>(attrib.normals[i + 2]));
+                    }
+                    if (any_uv) {
+                        const auto i = static_cast<std::size_t>(2 * c.texcoord_index);
+                        s.uvs.emplace_back(static_cast<double>(attrib.texcoords[i]), static_cast<double>(attrib.texcoords[i + 1]));
+                    }
+                }
+                s.indices.push_back(it->second);
+            }
             at += n;
+            ++face;
             s.ends.push_back(s.indices.size());
         }
     }
+    if (any_normal || any_uv) s.positions = std::move(positions);
     return s;
 }
 
@@ -437,6 +531,19 @@ triangle_mesh to_mesh(const fs::path& path, const soup& s) {
         if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
             fail(path, "vertex " + std::to_string(i) + " has a non-finite coordinate (or one beyond float range)");
         m.positions.push_back(q);
+    }
+    for (std::size_t i = 0; i < s.normals.size(); ++i) {
+        const glm::vec3 n(s.normals[i]);
+        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+            fail(path, "vertex " + std::to_string(i) + " has a non-finite normal (or one beyond float range)");
+        if (!(glm::dot(n, n) > 0.0f)) fail(path, "vertex " + std::to_string(i) + " has a zero normal");
+        m.normals.push_back(n);
+    }
+    for (std::size_t i = 0; i < s.uvs.size(); ++i) {
+        const glm::vec2 t(s.uvs[i]);
+        if (!std::isfinite(t.x) || !std::isfinite(t.y))
+            fail(path, "vertex " + std::to_string(i) + " has non-finite texture coordinates (or ones beyond float range)");
+        m.uvs.push_back(t);
     }
     const auto nv = static_cast<long long>(m.positions.size());
     std::size_t triangles = 0;

@@ -18,6 +18,7 @@
 #include <fmt/core.h>
 
 #include "iris/exr/exr.hpp"
+#include "iris/hash.hpp"
 
 namespace iris::renderer {
 namespace {
@@ -32,12 +33,6 @@ constexpr std::size_t fade_file_bytes = sizeof(exact_xyz) + sizeof(std::uint32_t
 constexpr char magic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', 'T'};
 constexpr std::uint32_t format_version = 2;  // 1: no fade layer, no fade_split (still read)
 constexpr int max_side = 16384;
-
-std::uint64_t fnv1a(const char* data, std::size_t n) noexcept {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 0x100000001b3ull;
-    return h;
-}
 
 /// \brief The key's fields as (name, value) in a fixed order: the header and the mismatch
 /// message both use it.
@@ -140,7 +135,7 @@ void write_checkpoint(const std::filesystem::path& path, const checkpoint& c) {
                     put(out, q.high);
                 }
     }
-    put(out, fnv1a(out.data(), out.size()));
+    put(out, fnv1a_of(out.data(), out.size()));
     try {
         exr::write_atomically(path, [&](const std::filesystem::path& tmp) {
             std::ofstream o(tmp, std::ios::binary);
@@ -241,7 +236,7 @@ checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
         }
     }
     const std::size_t body = r.position();
-    if (r.get<std::uint64_t>("the checksum") != fnv1a(bytes.data(), body)) r.fail("checksum mismatch");
+    if (r.get<std::uint64_t>("the checksum") != fnv1a_of(bytes.data(), body)) r.fail("checksum mismatch");
     for (std::size_t i = 0; i < pixels; ++i) {
         if (counts[i] != static_cast<std::uint32_t>(c.spp_done))
             r.fail(fmt::format("pixel {} has {} samples, spp_done is {}", i, counts[i], c.spp_done));

@@ -177,7 +177,9 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
         return m;
     }
     if (type == "conductor") {
-        r.expect_object({"type", "reflectance", "metal", "eta", "k"});
+        r.expect_object({"type", "reflectance", "metal", "eta", "k", "roughness"});
+        const float roughness =
+            r.has("roughness") ? static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness")) : 0.0f;
         if (auto ior = detail::read_conductor_ior(r)) {
             // its reflectance at normal incidence stands for it where one spectrum is needed (the tools)
             std::vector<double> lambda, value;
@@ -189,10 +191,15 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
             }
             material::conductor m{tabulated_spectrum(std::move(lambda), std::move(value), outside::clamp)};
             m.ior = std::move(ior);
+            m.roughness = roughness;
             return m;
         }
+        material::conductor m{r.has("reflectance") ? detail::read_reflectance(r.at("reflectance"))
+                                                    : tabulated_spectrum({360.0, 830.0}, {1.0, 1.0}, outside::clamp)};
+        m.roughness = roughness;
+        return m;
     }
-    if (type == "conductor" || type == "mirror") {
+    if (type == "mirror") {
         r.expect_object({"type", "reflectance"});
         return material::conductor{r.has("reflectance") ? detail::read_reflectance(r.at("reflectance"))
                                                         : tabulated_spectrum({360.0, 830.0}, {1.0, 1.0}, outside::clamp)};

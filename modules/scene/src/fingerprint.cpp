@@ -6,17 +6,16 @@
 #include <type_traits>
 #include <variant>
 
+#include "iris/hash.hpp"
 #include "iris/scene/scene.hpp"
 
 namespace iris::scene {
 namespace {
 
-class fnv1a {
+/// \brief iris's FNV-1a (iris/hash.hpp) fed the exact bits of a scene's values.
+class hasher {
 public:
-    void bytes(const void* data, std::size_t n) noexcept {
-        const auto* b = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < n; ++i) m_h = (m_h ^ b[i]) * 0x100000001b3ull;
-    }
+    void bytes(const void* data, std::size_t n) noexcept { m_h.add(data, n); }
     template <class T>
         requires std::is_arithmetic_v<T>
     void operator()(T v) noexcept {
@@ -40,16 +39,16 @@ public:
         (*this)(s.wavelengths());
         (*this)(s.values());
     }
-    std::uint64_t value() const noexcept { return m_h; }
+    std::uint64_t value() const noexcept { return m_h.value(); }
 
 private:
-    std::uint64_t m_h = 0xcbf29ce484222325ull;
+    fnv1a m_h;
 };
 
 }  // namespace
 
 std::uint64_t fingerprint(const iris::scene_desc& scene) {
-    fnv1a h;
+    hasher h;
     const auto& c = scene.camera;
     h(c.position);
     h(c.look_at);
@@ -87,7 +86,8 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
                     h(x.reflectance);
                     if (x.texture) h(*x.texture);  // only when present: untextured scenes keep their fingerprint
                 } else if constexpr (std::is_same_v<T, material::conductor>) {
-                    static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<material::conductor_ior>),
+                    static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<material::conductor_ior>) +
+                                                   sizeof(double),  // roughness, padded
                                   "fingerprint: hash every field of material::conductor");
                     static_assert(sizeof(material::conductor_ior) == sizeof(std::string) + 2 * sizeof(tabulated_spectrum),
                                   "fingerprint: hash every field of material::conductor_ior");
@@ -97,6 +97,7 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
                         h(x.ior->eta);
                         h(x.ior->k);
                     }
+                    if (x.roughness != 0.0f) h(x.roughness);  // only when rough: smooth conductors keep their fingerprint
                 } else {
                     static_assert(sizeof(T) == 0, "fingerprint: hash every field of a new material type");
                 }

@@ -25,13 +25,13 @@
 ///
 /// Sampling is driven by the hero alone. A sample reports, for every λ_k, f(λ_k)·|cos θi|
 /// along the hero's direction and the pdf p(ωi | λ_k) that λ_k would have had of producing
-/// that same direction — the inputs of the HWSS MIS weight (SPEC §2). For delta lobes both
+/// that same direction — the inputs of the HWSS MIS weight (docs/method.md §3). For delta lobes both
 /// are discrete weights; at a refraction through a dispersive interface the direction
-/// depends on λ, so p(ωi|λ_k) = 0 for k ≠ 0 (secondary wavelengths terminate, SPEC §2) and
+/// depends on λ, so p(ωi|λ_k) = 0 for k ≠ 0 (secondary wavelengths terminate, docs/method.md §3) and
 /// f(λ_k) = 0 with it. `follow` is what the B term multiplies its bins by when they take
 /// the hero's direction: f·|cos| for non-delta BxDFs, the lobe's discrete weight for delta
 /// ones — treating λ_b as if it took the hero's refracted direction is the method's (only)
-/// bias (SPEC §3).
+/// bias (docs/method.md §3).
 ///
 /// A BxDF whose value factors as f(λ)·|cos θi| = R(λ)·g(ωo, ωi) also has `cos_factor(wo,
 /// wi)` = g (`separable_bxdf`): the B term then multiplies its 80 bins by R once and by
@@ -149,6 +149,20 @@ struct delta_bxdf {
     template <std::size_t N, class S>
     bsdf_value<N> eval(const glm::vec3&, const glm::vec3&, const S&) const noexcept {
         return {};
+    }
+};
+
+/// \brief `f_cos` and `pdf` of a BxDF `D` that computes both at once in its `eval` (the
+/// microfacet BxDFs): each is that evaluation's half.
+template <class D>
+struct parts_of_eval {
+    template <std::size_t N, class S>
+    sampled_spectrum<N> f_cos(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        return static_cast<const D&>(*this).template eval<N>(wo, wi, s).f_cos;
+    }
+    template <std::size_t N, class S>
+    sampled_spectrum<N> pdf(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
+        return static_cast<const D&>(*this).template eval<N>(wo, wi, s).pdf;
     }
 };
 

@@ -7,7 +7,8 @@
 /// | `material_desc` alternative | BxDF | header |
 /// |---|---|---|
 /// | `material::diffuse` | `lambertian` | lambertian.hpp |
-/// | `material::conductor` | `specular_conductor` | conductor.hpp |
+/// | `material::conductor`, smooth | `specular_conductor` | conductor.hpp |
+/// | `material::conductor`, GGX α ≥ `smooth_alpha` | `rough_conductor` | conductor.hpp |
 /// | `material::dielectric`, smooth or index 1 | `smooth_dielectric` | smooth_dielectric.hpp |
 /// | `material::dielectric`, GGX α ≥ `smooth_alpha` | `rough_dielectric` | rough_dielectric.hpp |
 ///
@@ -32,9 +33,6 @@
 
 namespace iris {
 
-/// \brief Below this GGX α a rough dielectric is treated as smooth (numerically a delta).
-inline constexpr float smooth_alpha = 1e-3f;
-
 namespace detail {
 template <class>
 inline constexpr bool no_bxdf_for = false;
@@ -57,7 +55,10 @@ decltype(auto) visit_bxdf(const material_desc& m, F&& f) {
         [&](const auto& data) -> decltype(auto) {
             using D = std::remove_cvref_t<decltype(data)>;
             if constexpr (std::is_same_v<D, material::diffuse>) return f(lambertian{data});
-            else if constexpr (std::is_same_v<D, material::conductor>) return f(specular_conductor{data});
+            else if constexpr (std::is_same_v<D, material::conductor>) {
+                if (data.roughness < smooth_alpha) return f(specular_conductor{data});
+                return f(rough_conductor{data});
+            }
             else if constexpr (std::is_same_v<D, material::dielectric>) {
                 if (detail::effectively_smooth(data)) return f(smooth_dielectric{data});
                 return f(rough_dielectric{data});
@@ -82,7 +83,7 @@ sampled_spectra<N> scene_spectra(const B& b, const sampled_wavelengths<N>& wl) n
     return s;
 }
 
-static_assert(separable_bxdf<lambertian> && bxdf<specular_conductor> && bxdf<smooth_dielectric> &&
-              bxdf<rough_dielectric>);
+static_assert(separable_bxdf<lambertian> && bxdf<specular_conductor> && bxdf<rough_conductor> &&
+              bxdf<smooth_dielectric> && bxdf<rough_dielectric>);
 
 }  // namespace iris

@@ -21,9 +21,11 @@ namespace iris {
 
 /// \brief The hero samples a visible microfacet normal and reflects or refracts through it
 /// with probability F(λ₀); every wavelength keeps a finite p(ωi | λ_k) (rough events never
-/// terminate the secondaries, SPEC §2), and the bins follow with f·|cos|.
-struct rough_dielectric {
+/// terminate the secondaries, docs/method.md §3), and the bins follow with f·|cos|.
+struct rough_dielectric : parts_of_eval<rough_dielectric> {
     const material::dielectric& data;
+
+    explicit rough_dielectric(const material::dielectric& d) noexcept : data(d) {}
 
     static constexpr bool delta = false;
     static constexpr bool reads_albedo = false;
@@ -31,16 +33,6 @@ struct rough_dielectric {
 
     const ior_model& ior() const noexcept { return data.ior; }
     detail::ggx distribution() const noexcept { return {data.roughness}; }
-
-    template <std::size_t N, class S>
-    sampled_spectrum<N> f_cos(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
-        return eval<N>(wo, wi, s).f_cos;
-    }
-
-    template <std::size_t N, class S>
-    sampled_spectrum<N> pdf(const glm::vec3& wo, const glm::vec3& wi, const S& s) const noexcept {
-        return eval<N>(wo, wi, s).pdf;
-    }
 
     /// \brief f·|cos θi| and pdf from one evaluation of the microfacet terms per wavelength.
     template <std::size_t N, class S>
@@ -90,7 +82,7 @@ struct rough_dielectric {
 
     template <std::size_t M, class S>
     sampled_spectrum<M> follow(const glm::vec3& wo, const glm::vec3& wi, lobe /*kind*/, const S& s) const noexcept {
-        return f_cos<M>(wo, wi, s);
+        return this->template f_cos<M>(wo, wi, s);
     }
 };
 

@@ -20,7 +20,7 @@ namespace iris {
 
 /// \brief The hero reflects with probability F(λ₀) and refracts otherwise. A reflection
 /// keeps every wavelength (had λ_k been the hero, it would have reflected with probability
-/// F(λ_k)); a refraction through a dispersive interface keeps the hero alone (SPEC §2).
+/// F(λ_k)); a refraction through a dispersive interface keeps the hero alone (docs/method.md §3).
 /// The bins follow with F(λ_b) or (1 − F(λ_b))/η′_b², read from tabulated η² and 1/η².
 struct smooth_dielectric : delta_bxdf {
     const material::dielectric& data;

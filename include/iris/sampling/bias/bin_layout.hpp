@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief `bias::bin_layout`: the spectral bins of the B term (SPEC §3) — bins of width
+/// \brief `bias::bin_layout`: the spectral bins of the B term (docs/method.md §2, Bias policies) — bins of width
 /// Δλ (default 5 nm) from λmin, the last one narrower if Δλ does not divide |Λ|, and one
 /// wavelength per bin per sample, λ_b = lower_b + u Δλ_b with one jitter u shared by all
 /// bins (each λ_b is then uniform in its own bin, so B is an unbiased estimate of

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief The `BiasPolicy` concept: what replaces the part of the spectrum the
-/// restriction does not sample (SPEC §3). Models: `bias::none`, `bias::scaled_pdf`,
+/// restriction does not sample (docs/method.md §2, Bias policies). Models: `bias::none`, `bias::scaled_pdf`,
 /// `bias::propagate_unused` (catalogue: bias.hpp).
 ///
 /// Every policy shares the restricted estimate

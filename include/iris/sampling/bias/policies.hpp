@@ -1,8 +1,8 @@
 #pragma once
 /// \file
-/// \brief The bias policies of SPEC §3: `none` (restriction only), `scaled_pdf` (the
-/// paper's "scaling PDFs") and `propagate_unused` (the paper's propagation, with SPEC's
-/// r(λ) numerator factor, so r and 1 − r partition unity).
+/// \brief The bias policies of docs/method.md §2: `none` (restriction only), `scaled_pdf`
+/// (the paper's "scaling PDFs") and `propagate_unused` (the paper's propagation, with the
+/// r(λ) numerator factor of docs/method.md §4, fix 2, so r and 1 − r partition unity).
 
 #include <cmath>
 #include <cstddef>
@@ -50,7 +50,7 @@ struct scaled_pdf {
 /// \brief F = F_R + B, w_j = r_α(λ_j) / p_α(λ_j) and
 /// B = Σ_b (1 − r_α(λ_b)) f_h(x̄, λ_b) Δλ_b / p(x̄ | λ_0) over the bins of a `bin_layout`,
 /// λ_b jittered in its bin. Unbiased at every α in scenes without specular dispersion
-/// (SPEC U1); the only bias is the hero's direction for λ_b at specular dispersive events.
+/// (docs/method.md §4, U1); the only bias is the hero's direction for λ_b at specular dispersive events.
 struct propagate_unused {
     static constexpr std::string_view name = "propagate";
     static constexpr bool propagates = true;

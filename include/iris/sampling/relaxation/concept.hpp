@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief The `RelaxationCurve` concept: maps the progress t = min(1, i / N_thold) of a
-/// pixel's sample index i to the restriction extent α_i = curve(t) (SPEC §1).
+/// pixel's sample index i to the restriction extent α_i = curve(t) (docs/method.md §1).
 /// Models: `relaxation::linear`, `relaxation::quadratic`, `relaxation::none`
 /// (catalogue: relaxation.hpp).
 ///

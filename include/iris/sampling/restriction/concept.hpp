@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief The `RestrictionKernel` concept: r_α(λ) ∈ [0, 1] with extent α ∈ [0, 1]
-/// (SPEC §1). Models: `restriction::unrestricted`, `restriction::box`,
+/// (docs/method.md §1). Models: `restriction::unrestricted`, `restriction::box`,
 /// `restriction::multi_box<N>`, `restriction::gaussian` (catalogue: restriction.hpp).
 ///
 /// A kernel is a small value type holding its parameters (centres, widths in nm).

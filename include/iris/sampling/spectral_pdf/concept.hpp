@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief The `SpectralPdf` concept: a base wavelength density p(λ) (SPEC §1), before any
+/// \brief The `SpectralPdf` concept: a base wavelength density p(λ) (docs/method.md §1), before any
 /// restriction. Models: `spectral_pdf::uniform`, `spectral_pdf::visible`,
 /// `spectral_pdf::tabulated`, `spectral_pdf::illuminant` (catalogue: spectral_pdf.hpp).
 ///

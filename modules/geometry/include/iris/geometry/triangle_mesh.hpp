@@ -90,11 +90,16 @@ triangle_mesh make_sphere(glm::vec3 centre, float radius, unsigned subdivisions)
 
 /// \brief Read a triangle mesh from .obj (tinyobjloader; polygons are triangulated),
 /// .off (ASCII) or .ply (ASCII or binary, `vertex` x/y/z and `face` vertex_indices);
-/// polygons with more than three vertices are split into fans. The mesh is returned as
-/// stored (not checked for closedness; see `check_mesh`).
+/// polygons with more than three vertices are split into fans. Per-vertex normals and
+/// texture coordinates are read where the file has them (PLY `nx ny nz`, `u v` or `s t`
+/// or `texture_u/v`/`texture_s/t`; OBJ `vn`, `vt`, indexed per corner: an OBJ vertex used
+/// with different normals or uvs becomes one vertex per distinct combination). The mesh
+/// is returned as stored (not checked for closedness; see `check_mesh`).
 /// \throws error naming the file and the problem: missing or unreadable file, unsupported
 /// extension, parse failure (with the line for text formats), no triangles, non-finite
-/// coordinates, vertex indices out of range.
+/// coordinates, vertex indices out of range; normals or uvs given in part (some components,
+/// some OBJ corners), zero or non-finite normals, normal or uv indices out of range, an
+/// OFF file with normals or texture coordinates (NOFF, STOFF: not read, so refused).
 triangle_mesh load_mesh(const std::filesystem::path& path);
 
 /// \brief The formats `load_mesh` reads.

@@ -134,7 +134,7 @@ struct preset_info {
     std::string name;    ///< CLI name, e.g. "paper"
     std::string config;  ///< config name, e.g. "multibox3/linear/C4/propagate"
     std::size_t wavelengths = 0;  ///< C
-    /// \brief E[F] = I at every iteration in scenes without specular dispersion (SPEC U1):
+    /// \brief E[F] = I at every iteration in scenes without specular dispersion (docs/method.md §4, U1):
     /// true for an unrestricted kernel or the PropagateUnused bias; restriction-only and
     /// scaled-pdf are biased until N_thold.
     bool unbiased_before_nthold = false;
