@@ -212,9 +212,9 @@ TEST(Bsdf, FresnelMatchesClosedFormsForTheHeroAndTheBins) {
 namespace {
 /// Conductor Fresnel from the complex amplitudes (independent of iris's real form).
 double complex_conductor_fresnel(double c, double eta, double k) {
-    const std::complex<double> n(eta, k);
-    const std::complex<double> ct = std::sqrt(1.0 - (1.0 - c * c) / (n * n));
-    const std::complex<double> rs = (c - n * ct) / (c + n * ct), rp = (n * c - ct) / (n * c + ct);
+    const std::complex<double> index(eta, k);
+    const std::complex<double> ct = std::sqrt(1.0 - (1.0 - c * c) / (index * index));
+    const std::complex<double> rs = (c - index * ct) / (c + index * ct), rp = (index * c - ct) / (index * c + ct);
     return 0.5 * (std::norm(rs) + std::norm(rp));
 }
 }  // namespace
@@ -224,7 +224,7 @@ double complex_conductor_fresnel(double c, double eta, double k) {
 // metals against their reflectance at normal incidence computed from the data files'
 // rows (data/README.md: R = ((n − 1)² + k²)/((n + 1)² + k²) at the row nearest 550 nm).
 TEST(Bsdf, ConductorFresnelIsExact) {
-    for (const auto [eta, k] : {std::pair{0.2, 3.0}, std::pair{0.05, 3.6}, std::pair{1.2, 7.0}, std::pair{2.5, 0.0},
+    for (const auto& [eta, k] : {std::pair{0.2, 3.0}, std::pair{0.05, 3.6}, std::pair{1.2, 7.0}, std::pair{2.5, 0.0},
                                 std::pair{1.5, 0.01}, std::pair{0.9, 1e-3}, std::pair{3.0, 30.0}}) {
         for (double c = 0.0; c <= 1.0; c += 1.0 / 64.0) {
             const double want = complex_conductor_fresnel(c, eta, k);
@@ -410,7 +410,9 @@ TEST(Bsdf, RoughConductorIsReciprocalBoundedAndConsistent) {
             }
             const double albedo = sum / n_samples;
             EXPECT_LE(albedo, 1.0) << alpha << " " << c;
-            if (alpha == 0.01f && std::fabs(c) > 0.5f) EXPECT_GT(albedo, 0.999) << c;
+            if (alpha == 0.01f && std::fabs(c) > 0.5f) {
+                EXPECT_GT(albedo, 0.999) << c;
+            }
         }
     }
 }
