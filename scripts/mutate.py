@@ -272,6 +272,27 @@ MUTATIONS = [
      [("modules/geometry/src/load.cpp", "                        if (static_cast<int>(k) == uv[c]) t[c] = v;",
        "                        if (static_cast<int>(k) == uv[0]) t[c] = v;")],
      ["geometry_test"], "LoadMesh.*"),
+    # issue 32: light tracing and the film's splats
+    ("light-transmission-without-eta2",
+     [("include/iris/render/light_tracer.hpp", "                            f[k] *= e * e;", "                            f[k] *= 1.0f + 0.0f * e;")],
+     ["light_tracer_test"], "LightTracer.AgreesWithThePathTracer*"),
+    ("light-camera-importance-cos4",
+     [("include/iris/render/light_tracer.hpp", "        l.g = m_camera.pdf_direction(from_camera) / d2;",
+       "        l.g = m_camera.importance(from_camera) / d2;")],
+     ["light_tracer_test"], "LightTracer.MatchesTheExact*"),
+    ("light-bins-transmission-without-eta2",
+     [("include/iris/render/propagation.hpp", "                    for (std::size_t b = 0; b < Bins; ++b) f[b] *= e2[b];",
+       "                    (void)e2;")],
+     ["light_tracer_test"], "LightTracer.TheBTerm*"),
+    ("light-without-shading-correction",
+     [("include/iris/render/light_tracer.hpp",
+       "                const float shading = std::fabs(lo.z) * std::fabs(glm::dot(wi, vx.ng)) / (wo_ng * std::fabs(s->wi.z));",
+       "                const float shading = 1.0f;")],
+     ["light_tracer_test"], "LightTracer.*"),
+    ("film-pass-skips-pixels-without-splats",
+     [("include/iris/render/film.hpp", "        for (std::size_t i = 0; i < n; ++i) {\n            ++m_count[i];\n            const exact_xyz& t = m_pass[i];",
+       "        for (std::size_t i = 0; i < n; ++i) {\n            if (m_pass[i] == exact_xyz{}) continue;\n            ++m_count[i];\n            const exact_xyz& t = m_pass[i];")],
+     ["render_test"], "Film.*"),
 ]
 
 

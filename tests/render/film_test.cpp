@@ -129,3 +129,108 @@ TEST(Film, FromPartsRebuildsTheFilmAndChecksItsParts) {
                  std::invalid_argument);
     EXPECT_THROW((void)iris::film::from_parts(2, 2, copy(f.sums()), copy(f.counts()), {5, 0, 0, 0}), std::invalid_argument);
 }
+
+namespace {
+/// \brief `count` splats over a w × h film: values over 18 orders of magnitude, some pixels
+/// taking many, some none.
+std::vector<iris::splat> random_splats(std::size_t count, std::uint32_t pixels, std::uint64_t seed) {
+    std::mt19937_64 gen(seed);
+    std::uniform_real_distribution<double> exponent(-9.0, 9.0), unit(-1.0, 1.0);
+    std::uniform_int_distribution<std::uint32_t> pixel(0, pixels / 2);  // the upper half of the film takes none
+    std::vector<iris::splat> out(count);
+    for (auto& s : out)
+        s = {pixel(gen), {unit(gen) * std::pow(10.0, exponent(gen)), unit(gen), unit(gen) * 1e-3}};
+    return out;
+}
+}  // namespace
+
+// A pass of splats is one sample per pixel, the exact sum of its splats: the same film
+// whether the splats come in one list or split over "threads" and shuffled, equal to a film
+// that took each pixel's total with add(); pixels no splat reached take a 0 sample.
+TEST(Film, APassOfSplatsIsOneSamplePerPixelWhateverTheListsAndOrder) {
+    const std::uint32_t w = 6, h = 4, n = w * h;
+    const auto all = random_splats(500, n, 3);
+    std::mt19937_64 gen(5);
+    auto shuffled = all;
+    std::shuffle(shuffled.begin(), shuffled.end(), gen);
+    std::vector<std::vector<iris::splat>> lists(3);
+    for (std::size_t k = 0; k < shuffled.size(); ++k) lists[k % 3].push_back(shuffled[k]);
+    lists.emplace_back();  // a thread that splatted nothing
+
+    iris::film one(w, h), split(w, h), reference(w, h);
+    for (std::uint64_t pass = 0; pass < 2; ++pass) {
+        one.add_pass(std::vector<std::vector<iris::splat>>{all}, pass);
+        split.add_pass(lists, pass);
+    }
+    // the reference: each pixel's exact total, summed in fixed point as add_pass must
+    std::vector<iris::exact_xyz> totals(n);
+    for (const auto& s : all) {
+        totals[s.pixel].x += iris::film::to_fixed(s.value.x);
+        totals[s.pixel].y += iris::film::to_fixed(s.value.y);
+        totals[s.pixel].z += iris::film::to_fixed(s.value.z);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(one.sum(i), split.sum(i));
+        const iris::exact_xyz twice{2 * totals[i].x, 2 * totals[i].y, 2 * totals[i].z};
+        EXPECT_EQ(one.sum(i), twice) << i;
+        EXPECT_EQ(one.samples(i), 2u);
+    }
+    EXPECT_EQ(one.sum(n - 1), iris::exact_xyz{});  // no splat: a 0 sample, counted
+    EXPECT_EQ(one.samples(n - 1), 2u);
+    EXPECT_EQ(one.dropped(), 0u);
+    // the control: a double running sum of the same splats in the two orders differs
+    double a = 0, b = 0;
+    for (const auto& s : all) a += s.value.x;
+    for (const auto& s : shuffled) b += s.value.x;
+    EXPECT_NE(a, b) << "the values no longer test the order";
+}
+
+// A non-finite or out-of-range splat drops its pixel's pass sample (0, counted once however
+// many bad splats it took) and no other pixel's; a pass total out of range is dropped too.
+TEST(Film, ABadSplatDropsItsPixelsPassSampleOnly) {
+    iris::film f(3, 1);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<std::vector<iris::splat>> pass{{{0, {1.0, 2.0, 3.0}}, {0, {nan, 0, 0}}, {0, {0, iris::film::max_sample, 0}}},
+                                                     {{1, {0.5, 0.5, 0.5}}, {2, {0.75 * iris::film::max_sample, 0, 0}}},
+                                                     {{2, {0.75 * iris::film::max_sample, 0, 0}}}};
+    f.add_pass(pass, 0);
+    EXPECT_EQ(f.samples(0), 1u);
+    EXPECT_EQ(f.sum(0), iris::exact_xyz{});
+    EXPECT_EQ(f.mean(1).x, 0.5);
+    EXPECT_EQ(f.samples(2), 1u);
+    EXPECT_EQ(f.sum(2), iris::exact_xyz{});  // 1.5 · max_sample in total
+    EXPECT_EQ(f.dropped(), 2u);
+    EXPECT_EQ(f.dropped_counts()[0], 1u);
+    EXPECT_THROW(f.add_pass(std::vector<std::vector<iris::splat>>{{{3, {1, 1, 1}}}}, 1), std::out_of_range);
+}
+
+// With the fade layer, a pass is on the early side when its index is below the split, and
+// the layer's sums are the film's: the fade sides of a splatting film equal those of a film
+// that took each pixel's pass totals with add().
+TEST(Film, PassesFallOnTheFadeLayersSidesByTheirIndex) {
+    const std::uint32_t n = 4;
+    iris::film f(2, 2), g(2, 2);
+    f.enable_fade(2);
+    g.enable_fade(2);
+    for (std::uint64_t pass = 0; pass < 5; ++pass) {
+        const std::vector<iris::splat> s{{0, {0.25 * static_cast<double>(pass + 1), 1.0, 0.0}},
+                                         {2, {0.5, 0.125 * static_cast<double>(pass), 2.0}},
+                                         {2, {0.25, 0.0, 1.0}}};
+        f.add_pass(std::vector<std::vector<iris::splat>>{s}, pass);
+        std::vector<iris::xyz> t(n);
+        for (const auto& x : s) t[x.pixel] = {t[x.pixel].x + x.value.x, t[x.pixel].y + x.value.y, t[x.pixel].z + x.value.z};
+        for (std::size_t i = 0; i < n; ++i) g.add(i, t[i], pass);  // dyadic values: the totals are exact
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(f.sum(i), g.sum(i));
+        const auto a = f.fade_sides(i), b = g.fade_sides(i);
+        for (std::size_t c = 0; c < 3; ++c) {
+            EXPECT_EQ(a[c].first.n, 2.0);
+            EXPECT_EQ(a[c].second.n, 3.0);
+            EXPECT_EQ(a[c].first.mean, b[c].first.mean);
+            EXPECT_EQ(a[c].second.mean, b[c].second.mean);
+            EXPECT_EQ(a[c].first.var_mean, b[c].first.var_mean);
+            EXPECT_EQ(a[c].second.var_mean, b[c].second.var_mean);
+        }
+    }
+}

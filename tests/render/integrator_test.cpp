@@ -13,31 +13,12 @@
 #include <iris/render/integrator.hpp>
 #include <iris/sampling/bias.hpp>
 
+#include "box_distribution.hpp"
 #include "test_scenes.hpp"
 
 namespace {
 
-/// \brief A 0/1 box restriction [a, b] on a uniform base pdf over [lo, hi], hero-rotated: the
-/// α = 0 end of a Box kernel, the case where the B term carries everything outside the
-/// window. With [a, b] = [lo, hi] it is the unrestricted uniform distribution (r ≡ 1).
-/// (Written out here, not taken from iris::sampling, so the integrator is tested against
-/// an independent model of the distribution it is given.)
-struct box_distribution {
-    float lo = 380.0f, hi = 780.0f, a = 500.0f, b = 600.0f;
-    float restriction(float l) const noexcept { return l >= a && l <= b ? 1.0f : 0.0f; }
-    float normalisation() const noexcept { return (b - a) / (hi - lo); }
-    template <std::size_t C>
-    iris::sampled_wavelengths<C> sample_wavelengths(float u) const noexcept {
-        iris::sampled_wavelengths<C> wl;
-        for (std::size_t j = 0; j < C; ++j) {
-            float uj = u + static_cast<float>(j) / static_cast<float>(C);
-            uj -= std::floor(uj);
-            wl.lambda(j) = a + uj * (b - a);
-            wl.pdf(j) = 1.0f / (b - a);
-        }
-        return wl;
-    }
-};
+using iris::test::box_distribution;
 
 template <std::size_t C, bool Propagates = false>
 struct test_config {

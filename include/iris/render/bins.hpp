@@ -305,6 +305,28 @@ struct hero_tables {
         return mix(albedo, r, wl);
     }
 
+    /// \brief The spectra BxDF `bxdf` of material `m` reads at the wavelengths `wl`, at a
+    /// vertex with texture coordinates `uv`: its reflectance (an untextured material's own
+    /// row, or a texel's basis mix — written to `albedo_at` for the B term), its index of
+    /// refraction from the index model, a conductor's η and k from its tables. Each is read
+    /// once per vertex, by whichever estimator made it.
+    template <std::size_t N, class B>
+    sampled_spectra<N> at_vertex(const B& bxdf, const scene_desc& scene, std::uint32_t m, glm::vec2 uv,
+                                 const sampled_wavelengths<N>& wl, emission_ref& albedo_at) const noexcept {
+        sampled_spectra<N> out;
+        if constexpr (B::reads_albedo) {
+            albedo_at = albedo_ref(m, albedo_basis, texture_weights(scene, scene.materials[m], uv));
+            out.reflectance = reflectance(albedo_at, wl);
+        }
+        if constexpr (B::reads_eta) out.index = detail::etas(bxdf.ior(), wl);
+        if constexpr (reads_conductor_v<B>)
+            if (bxdf.has_ior()) {
+                out.index = conductor_eta[m](wl);
+                out.kappa = conductor_k[m](wl);
+            }
+        return out;
+    }
+
     hero_tables() = default;
     explicit hero_tables(const scene_desc& scene) {
         const float lo = scene.lambda_min, hi = scene.lambda_max;

@@ -31,6 +31,8 @@ public:
     }
 
     const glm::vec3& origin() const noexcept { return m_origin; }
+    int width() const noexcept { return m_width; }
+    int height() const noexcept { return m_height; }
 
     /// \brief Unit direction through image position (x + jitter.x, y + jitter.y); y = 0 is the top row.
     glm::vec3 direction(int x, int y, glm::vec2 jitter) const noexcept {

@@ -21,6 +21,11 @@
 /// every sample; `to_image` shows the fade's blend. The layer's state (`fade_state`, and
 /// `from_parts` with it) is exact like the sums, so checkpoints and the ranks' reduction
 /// carry it, and a fading render resumed or distributed gives the same image bit for bit.
+///
+/// **Splats** (`add_pass`): an estimator that adds light to pixels other than its sample's
+/// own (light tracing, bidirectional connections to the camera) hands the film a whole pass
+/// of splats; each pixel takes one sample per pass, the exact sum of what landed on it. The
+/// state above stays what it is, so all of it holds for such renders too.
 
 #include <array>
 #include <cmath>
@@ -44,6 +49,14 @@ __extension__ typedef __int128 exact_int;  ///< GCC and Clang; the film's only n
 struct exact_xyz {
     exact_int x = 0, y = 0, z = 0;
     friend bool operator==(const exact_xyz&, const exact_xyz&) = default;
+};
+
+/// \brief A contribution to one pixel from anywhere in a pass: a light path's vertex
+/// connected to the camera lands on the pixel it projects to, not on the pixel whose
+/// sample made it (`film::add_pass`).
+struct splat {
+    std::uint32_t pixel = 0;  ///< row-major index
+    xyz value;
 };
 
 class film {
@@ -91,6 +104,62 @@ public:
         }
         if (m_fade) m_fade->add(i, ok ? v : xyz{}, sample);
     }
+
+    /// \brief Add one pass of an estimator that splats (light tracing, bidirectional
+    /// connections to the camera): every pixel takes **one sample**, the sum of the splats
+    /// that landed on it in this pass — 0 where none did. `lists` is a range of ranges of
+    /// `splat` (one list per thread, in any order); `sample` is the pass's index (the fade
+    /// layer's side).
+    ///
+    /// A pass is a sample, so everything the film keeps per sample keeps its meaning: counts
+    /// (one per pixel per pass), the running mean, the fade layer's early and late sides and
+    /// their variances (of per-pass totals), checkpoints (taken between passes) and the ranks'
+    /// reduction (ranks render whole passes). Splats are summed exactly like samples, so the
+    /// pass does not depend on how they were split into lists or ordered: threads and tiles
+    /// change nothing. A splat that is not finite or out of range (|v| ≥ max_sample) makes
+    /// its pixel's pass sample a dropped one (0, counted once), as a non-finite sample is;
+    /// so does a pass total out of range. The sum of a pixel's splats cannot overflow: fewer
+    /// than 2^32 splats (checked) of |v| < 2^39 stay below 2^127.
+    /// Scratch memory while the film is used this way: pass_bytes_per_pixel.
+    /// \throws std::out_of_range for a splat's pixel outside the film, std::length_error
+    /// for 2^32 or more splats in one pass.
+    template <class Lists>
+    void add_pass(const Lists& lists, std::uint64_t sample) {
+        const std::size_t n = m_sum.size();
+        m_pass.assign(n, exact_xyz{});
+        m_pass_bad.assign(n, 0);
+        std::uint64_t splats = 0;
+        for (const auto& list : lists)
+            for (const splat& s : list) {
+                if (s.pixel >= n) throw std::out_of_range("film::add_pass: a splat outside the film");
+                if (++splats > UINT32_MAX) throw std::length_error("film::add_pass: 2^32 or more splats in one pass");
+                if (!(summable(s.value.x) && summable(s.value.y) && summable(s.value.z))) {
+                    m_pass_bad[s.pixel] = 1;
+                    continue;
+                }
+                exact_xyz& p = m_pass[s.pixel];
+                p.x += to_fixed(s.value.x);
+                p.y += to_fixed(s.value.y);
+                p.z += to_fixed(s.value.z);
+            }
+        for (std::size_t i = 0; i < n; ++i) {
+            ++m_count[i];
+            const exact_xyz& t = m_pass[i];
+            const xyz v{static_cast<double>(t.x) * 0x1p-56, static_cast<double>(t.y) * 0x1p-56,
+                        static_cast<double>(t.z) * 0x1p-56};
+            const bool ok = !m_pass_bad[i] && summable(v.x) && summable(v.y) && summable(v.z);
+            if (ok) {
+                m_sum[i].x += t.x;
+                m_sum[i].y += t.y;
+                m_sum[i].z += t.z;
+            } else {
+                ++m_dropped[i];
+            }
+            if (m_fade) m_fade->add_fixed(i, ok ? t : exact_xyz{}, ok ? v : xyz{}, sample);
+        }
+    }
+    /// \brief Scratch bytes per pixel of `add_pass`: a pass's exact sums and a flag.
+    static constexpr std::size_t pass_bytes_per_pixel = sizeof(exact_xyz) + 1;
 
     /// \brief Switch the fade layer on (a film without samples): samples with index < `split`
     /// (N_thold) are the early side. Memory: fade_bytes_per_pixel more per pixel.
@@ -193,6 +262,11 @@ public:
         fade_parts(std::size_t pixels, std::uint32_t split_at)
             : split(split_at), early_sum(pixels), early_count(pixels, 0), early_sq(pixels), late_sq(pixels) {}
         void add(std::size_t i, const xyz& v, std::uint64_t sample) noexcept {
+            add_fixed(i, {to_fixed(v.x), to_fixed(v.y), to_fixed(v.z)}, v, sample);
+        }
+        /// A sample whose fixed-point value `t` (what the film's sums took) is known;
+        /// `v` is its value for the squares.
+        void add_fixed(std::size_t i, const exact_xyz& t, const xyz& v, std::uint64_t sample) noexcept {
             const bool early = sample < split;
             auto& sq = early ? early_sq[i] : late_sq[i];
             sq[0].add(fade::to_fixed_square(v.x));
@@ -200,9 +274,9 @@ public:
             sq[2].add(fade::to_fixed_square(v.z));
             if (!early) return;
             ++early_count[i];
-            early_sum[i].x += to_fixed(v.x);
-            early_sum[i].y += to_fixed(v.y);
-            early_sum[i].z += to_fixed(v.z);
+            early_sum[i].x += t.x;
+            early_sum[i].y += t.y;
+            early_sum[i].z += t.z;
         }
         void merge(const fade_parts& o) noexcept {
             for (std::size_t i = 0; i < early_sum.size(); ++i) {
@@ -316,6 +390,8 @@ private:
     std::vector<std::uint32_t> m_count;
     std::vector<std::uint32_t> m_dropped;
     std::optional<fade_parts> m_fade;
+    std::vector<exact_xyz> m_pass;           ///< add_pass's scratch: this pass's sums
+    std::vector<unsigned char> m_pass_bad;   ///< add_pass's scratch: a pixel took a bad splat
 };
 
 }  // namespace iris

@@ -128,19 +128,8 @@ public:
                 // the material's spectra, each read once per vertex (a diffuse vertex reads its
                 // reflectance for NEE and for BSDF sampling): the hero's from its lattice tables
                 // and the index model, the bins' from theirs
-                sampled_spectra<C> hero;
                 emission_ref albedo;  // the reflectance at the hit: the material's table, or a texel's basis mix
-                if constexpr (B::reads_albedo) {
-                    albedo = albedo_ref(shape.material, m_hero.albedo_basis,
-                                        texture_weights(m_scene, m_scene.materials[shape.material], vx.uv));
-                    hero.reflectance = m_hero.reflectance(albedo, wl);
-                }
-                if constexpr (B::reads_eta) hero.index = detail::etas(bxdf.ior(), wl);
-                if constexpr (reads_conductor_v<B>)
-                    if (bxdf.has_ior()) {
-                        hero.index = m_hero.conductor_eta[shape.material](wl);
-                        hero.kappa = m_hero.conductor_k[shape.material](wl);
-                    }
+                const sampled_spectra<C> hero = m_hero.at_vertex(bxdf, m_scene, shape.material, vx.uv, wl, albedo);
                 bterm.enter(bxdf, shape.material, albedo);
                 if constexpr (!B::delta) next_event(tracer, bxdf, vx, lo, wl, hero, hp, bterm, rng, out);
                 // BSDF sampling with the hero wavelength; the bins follow it (the sample stays

@@ -56,6 +56,13 @@ struct no_propagation {
     static constexpr float roulette_max(float m) noexcept { return m; }
     void survive(float) noexcept {}
     void add_xyz(xyz&) const noexcept {}
+    void start_emitted(const emission_ref&, float) noexcept {}
+    template <class B, std::size_t C>
+    void follow_adjoint(const B&, const glm::vec3&, const bsdf_sample<C>&, float) noexcept {}
+    void weigh(float) noexcept {}
+    template <class B>
+    void connect(float, xyz&) noexcept {}
+    void connect_emitter(float, xyz&) noexcept {}
 };
 
 /// \brief The B term of one path over `Bins` bins, reading the tables of one render.
@@ -140,6 +147,69 @@ public:
         else m_tb_max = scale(bxdf.template follow<Bins>(wo, s.wi, s.kind, spectra()), inv_p0);
     }
 
+    /// \name Light subpaths (iris/render/light_tracer.hpp; docs/method.md §3, "Light tracing")
+    /// The same throughput t_b, built from the light's side: it starts at the emitter,
+    /// follows the hero's scattering with the adjoint BSDF, and each connection to the camera
+    /// is one contribution of its own.
+    /// @{
+    /// \brief The light subpath leaves an emitter: t_b ← t_b · Le(λ_b) · k.
+    void start_emitted(const emission_ref& le, float k) noexcept {
+        if (!m_on) return;
+        const view v = emitted(le, k);
+        for (std::size_t b = 0; b < Bins; ++b) m_tb[b] *= v[b] * k;
+        m_tb_max = 0.0f;
+        for (std::size_t b = 0; b < Bins; ++b) m_tb_max = m_tb[b] > m_tb_max ? m_tb[b] : m_tb_max;
+    }
+    /// \brief The bins follow the hero's sampled direction with the adjoint BSDF: `follow`'s
+    /// weight times (η′_b)² across a transmission (importance is not compressed by the
+    /// interface, radiance is: f* = f · η′² there, η′ the relative index from ωo's side to
+    /// ωi's, here each bin's own) and times `shading`, the shading-normal correction.
+    template <class B, std::size_t C>
+    void follow_adjoint(const B& bxdf, const glm::vec3& wo, const bsdf_sample<C>& s, float shading) noexcept {
+        if (!m_on) return;
+        const float k = shading / s.pdf[0];
+        if constexpr (separable_bxdf<B>) {
+            m_tb_max = scale(m_refl, B::cos_factor(wo, s.wi) * k);
+        } else {
+            sampled_spectrum<Bins> f = bxdf.template follow<Bins>(wo, s.wi, s.kind, spectra());
+            if constexpr (B::reads_eta)
+                if (s.kind == lobe::transmission) {
+                    const view e2 = wo.z > 0.0f ? spectra().eta2() : spectra().inv_eta2();
+                    for (std::size_t b = 0; b < Bins; ++b) f[b] *= e2[b];
+                }
+            m_tb_max = scale(f, k);
+        }
+    }
+    /// \brief Multiply the throughput by k (the light subpath's cos θ / (p_pos p_dir)).
+    void weigh(float k) noexcept {
+        if (!m_on) return;
+        for (std::size_t b = 0; b < Bins; ++b) m_tb[b] *= k;
+        m_tb_max *= k;
+    }
+    /// \brief A connection of the light subpath's vertex to the camera, after
+    /// `prepare_light(bxdf, ωc, ωo)` made the bins' f(ωc, ωo)·|cos θo| — the adjoint BSDF's
+    /// value toward the camera up to the factor in k: v += Δλ Σ_b t_b f_b k cmf(λ_b). Not yet
+    /// divided by ∫ȳ.
+    template <class B>
+    void connect(float k, xyz& v) noexcept {
+        if (!m_on) return;
+        if constexpr (separable_bxdf<B>) {
+            const float g = m_cos * k;
+            for (std::size_t b = 0; b < Bins; ++b) m_mix[b] = m_tb[b] * m_refl[b] * g;
+        } else {
+            for (std::size_t b = 0; b < Bins; ++b) m_mix[b] = m_tb[b] * m_f[b] * k;
+        }
+        sum_xyz(m_mix.data(), v);
+    }
+    /// \brief The emitter's own point seen by the camera (the light subpath's first vertex):
+    /// v += Δλ Σ_b t_b k cmf(λ_b), t_b holding Le(λ_b) since `start_emitted`.
+    void connect_emitter(float k, xyz& v) noexcept {
+        if (!m_on) return;
+        for (std::size_t b = 0; b < Bins; ++b) m_mix[b] = m_tb[b] * k;
+        sum_xyz(m_mix.data(), v);
+    }
+    /// @}
+
     /// \brief The larger of m and B's largest throughput (a NaN in B is ignored).
     float roulette_max(float m) const noexcept { return m_on && m_tb_max > m ? m_tb_max : m; }
     /// \brief The path survived roulette with probability q < 1.
@@ -152,12 +222,18 @@ public:
     /// (one chain of 80 dependent adds would be latency-bound). Not yet divided by ∫ȳ.
     void add_xyz(xyz& v) const noexcept {
         if (!m_on) return;
+        sum_xyz(m_lb.values().data(), v);
+    }
+
+private:
+    /// \brief v += Δλ Σ_b w_b cmf(λ_b), in the fixed order `add_xyz` describes.
+    void sum_xyz(const float* w_b, xyz& v) const noexcept {
         std::array<float, Bins> sx_, sy_, sz_;  // scratch, used only off the lattice
         const auto xb = m_t.x_bar.at(m_bp, sx_), yb = m_t.y_bar.at(m_bp, sy_), zb = m_t.z_bar.at(m_bp, sz_);
         constexpr std::size_t lanes = 8;
         std::array<float, lanes> sx{}, sy{}, sz{};
         const auto add = [&](std::size_t b, std::size_t l) {
-            const float w = m_lb[b];  // 1 − r_α(λ_b) is in the throughput already
+            const float w = w_b[b];  // 1 − r_α(λ_b) is in the throughput already
             sx[l] += w * xb[b];
             sy[l] += w * yb[b];
             sz[l] += w * zb[b];
@@ -178,7 +254,6 @@ public:
         v.z += dl * static_cast<double>(z);
     }
 
-private:
     using view = typename binned_spectrum<Bins>::view;
 
     /// \brief The current material's spectra at the bins, as a BxDF reads them (bxdf.hpp):

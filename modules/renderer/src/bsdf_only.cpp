@@ -5,6 +5,5 @@ namespace iris::renderer::detail {
 template void render_bsdf_only<isa::baseline>(const render_job&);
 #if IRIS_ISA_DISPATCH
 template void render_bsdf_only<isa::avx2>(const render_job&);
-template void render_bsdf_only<isa::avx512>(const render_job&);
 #endif
 }  // namespace iris::renderer::detail

@@ -16,7 +16,15 @@
 namespace iris::renderer::detail {
 
 /// \brief The instruction sets the hot loop is compiled for (`instruction_sets()` names them).
-enum class isa { baseline, avx2, avx512 };
+enum class isa { baseline, avx2 };
+inline constexpr const char* isa_name(isa i) noexcept { return i == isa::avx2 ? "avx2" : "baseline"; }
+
+/// \brief Whether preset P's hot loop has an AVX2 copy: only where the B term runs 80 bins
+/// wide, the one loop a wider instruction set speeds up in a whole render
+/// (docs/performance.md, "The copies of the hot loop"); the other presets, the light tracer
+/// and the BSDF-only estimator run their baseline loop whatever `--isa` asks.
+template <class P>
+inline constexpr bool has_isa_copy = iris::detail::bins_of<P>() >= 80;
 
 /// \brief What one render works on; the choices are made.
 struct render_job {
@@ -33,6 +41,10 @@ using render_fn = void (*)(const render_job&);
 /// \brief The preset's `path_integrator<Preset>` with the hot loop for I.
 template <class Preset, isa I>
 void render_preset(const render_job& job);
+
+/// \brief The preset's `light_integrator<Preset>` (light tracing, splats), baseline loop only.
+template <class Preset>
+void render_light(const render_job& job);
 
 /// \brief The independent estimator (`bsdf_only_integrator`) with the hot loop for I.
 template <isa I>

@@ -51,7 +51,7 @@ inline std::uint64_t tile_body(const Integrator& integ, const Tracer& tracer, co
 
 // The same loop for wider instruction sets. `flatten` inlines the whole integrator into
 // each copy, so all of it is compiled for that target (the B term's 80-wide spectra are
-// 5 AVX-512 registers instead of 20 SSE ones); calls that leave the translation unit
+// 10 AVX registers instead of 20 SSE ones); calls that leave the translation unit
 // (Embree, libm) stay as they are. The renderer is compiled with -ffp-contract=off: no
 // copy fuses a multiply and an add, no loop reassociates a sum (the B term's XYZ sums run
 // in lanes fixed by the code, path_integrator::trace), and division and square root are correctly
@@ -78,45 +78,36 @@ template <class Integrator, class Tracer, class Distribution>
                                                                         const Distribution& dist, float alpha, film& f) {
     return tile_body(integ, tracer, cam, job, dist, alpha, f);
 }
-template <class Integrator, class Tracer, class Distribution>
-[[gnu::target("arch=x86-64-v4"), gnu::flatten]] std::uint64_t tile_avx512(const Integrator& integ, const Tracer& tracer,
-                                                                          const camera_rays& cam, const tile_job& job,
-                                                                          const Distribution& dist, float alpha, film& f) {
-    return tile_body(integ, tracer, cam, job, dist, alpha, f);
-}
 #endif
 
 /// \brief The tile function of instruction set I (baseline where the build has no copies).
 template <isa I, class Integrator, class Tracer, class Distribution>
 constexpr auto tile_function() {
 #if IRIS_ISA_DISPATCH
-    if constexpr (I == isa::avx512) return &tile_avx512<Integrator, Tracer, Distribution>;
-    else if constexpr (I == isa::avx2) return &tile_avx2<Integrator, Tracer, Distribution>;
+    if constexpr (I == isa::avx2) return &tile_avx2<Integrator, Tracer, Distribution>;
     else return &tile_baseline<Integrator, Tracer, Distribution>;
 #else
     return &tile_baseline<Integrator, Tracer, Distribution>;
 #endif
 }
 
-/// \brief Run passes [opt.start_spp, opt.spp) — this rank's share of them. `make_distribution(i)` returns {α_i, distribution} for
-/// sample index i (built once per pass, shared read-only by all threads), with the hot
-/// loop compiled for instruction set I.
-template <isa I, class Integrator, class Tracer, class DistributionFor>
-void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays& cam, const options& opt,
-                DistributionFor&& distribution_for, film& f, status& st, const hooks& h) {
-    const int w = f.width(), ht = f.height();
-    const int ts = std::max(1, opt.tile_size);
-    const int tiles_x = (w + ts - 1) / ts, tiles_y = (ht + ts - 1) / ts;
-    const int tiles = tiles_x * tiles_y;
-    const sampler_setup sampler =
-        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
-    std::vector<std::uint64_t> tile_rays(static_cast<std::size_t>(tiles));
-    std::atomic<std::uint64_t> used{0};  // arena slots that rendered a tile (slots ≥ 64 share bit 63)
+/// \brief The progressive loop every estimator shares: rounds of `ranks` passes from
+/// start_spp on, this rank rendering pass round + rank; cancellation, the hooks and the
+/// status are kept here. `render_pass(i, alpha, dist, arena, enter)` renders pass i (with
+/// {α_i, p_α} from `distribution_for(i)`, built once per pass and shared read-only by all
+/// threads) in `arena`, calls `enter()` at the start of each parallel chunk, and returns
+/// the rays traced.
+template <class DistributionFor, class RenderPass>
+void for_each_pass(const options& opt, DistributionFor&& distribution_for, film& f, status& st, const hooks& h,
+                   RenderPass&& render_pass) {
+    std::atomic<std::uint64_t> used{0};  // arena slots that rendered a chunk (slots ≥ 64 share bit 63)
     tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::info::default_concurrency());
     st.threads = arena.max_concurrency();
-    using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
-    constexpr auto tile = tile_function<I, Integrator, Tracer, distribution>();
-
+    const auto enter = [&] {
+        const int slot = tbb::this_task_arena::current_thread_index();
+        used.fetch_or(std::uint64_t{1} << std::clamp(slot, 0, 63), std::memory_order_relaxed);
+        if (h.on_tile) h.on_tile(slot);
+    };
     if (h.on_start && !h.on_start(st)) return;
     // Rounds of `ranks` passes from start_spp on; this rank renders pass round + rank.
     for (int round = opt.start_spp; round < opt.spp; round += opt.ranks) {
@@ -129,29 +120,50 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
             const auto pass_start = std::chrono::steady_clock::now();  // time passes, not the hooks
             const auto [alpha, dist] = distribution_for(i);
             const std::uint64_t before = f.dropped();
-            arena.execute([&] {
-                tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
-                    const int slot = tbb::this_task_arena::current_thread_index();
-                    used.fetch_or(std::uint64_t{1} << std::clamp(slot, 0, 63), std::memory_order_relaxed);
-                    if (h.on_tile) h.on_tile(slot);
-                    for (int t = r.begin(); t != r.end(); ++t) {
-                        const int x0 = (t % tiles_x) * ts, y0 = (t / tiles_x) * ts;
-                        const tile_job job{x0, y0, std::min(x0 + ts, w), std::min(y0 + ts, ht), w, sampler,
-                                           static_cast<std::uint64_t>(i)};
-                        tile_rays[static_cast<std::size_t>(t)] = tile(integ, tracer, cam, job, dist, alpha, f);
-                    }
-                });
-            });
-            for (auto r : tile_rays) st.rays += r;  // fixed reduction order
+            st.rays += render_pass(i, alpha, dist, arena, enter);
             st.alpha = alpha;
             st.threads_used = std::popcount(used.load(std::memory_order_relaxed));
-            st.samples += static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(ht);
+            st.samples += static_cast<std::uint64_t>(f.width()) * static_cast<std::uint64_t>(f.height());
             st.nan_inf += f.dropped() - before;
             st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
         }
         st.spp_done = std::min(round + opt.ranks, opt.spp);
         if (h.on_pass && !h.on_pass(f, st)) break;
     }
+}
+
+/// \brief Run passes [opt.start_spp, opt.spp) — this rank's share of them — of the path
+/// tracer (or the BSDF-only estimator): one sample per pixel per pass, tile by tile, with
+/// the hot loop compiled for instruction set I.
+template <isa I, class Integrator, class Tracer, class DistributionFor>
+void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays& cam, const options& opt,
+                DistributionFor&& distribution_for, film& f, status& st, const hooks& h) {
+    const int w = f.width(), ht = f.height();
+    const int ts = std::max(1, opt.tile_size);
+    const int tiles_x = (w + ts - 1) / ts, tiles_y = (ht + ts - 1) / ts;
+    const int tiles = tiles_x * tiles_y;
+    const sampler_setup sampler =
+        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
+    std::vector<std::uint64_t> tile_rays(static_cast<std::size_t>(tiles));
+    using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
+    constexpr auto tile = tile_function<I, Integrator, Tracer, distribution>();
+    for_each_pass(opt, distribution_for, f, st, h,
+                  [&](int i, float alpha, const distribution& dist, tbb::task_arena& arena, const auto& enter) {
+                      arena.execute([&] {
+                          tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
+                              enter();
+                              for (int t = r.begin(); t != r.end(); ++t) {
+                                  const int x0 = (t % tiles_x) * ts, y0 = (t / tiles_x) * ts;
+                                  const tile_job job{x0, y0, std::min(x0 + ts, w), std::min(y0 + ts, ht), w, sampler,
+                                                     static_cast<std::uint64_t>(i)};
+                                  tile_rays[static_cast<std::size_t>(t)] = tile(integ, tracer, cam, job, dist, alpha, f);
+                              }
+                          });
+                      });
+                      std::uint64_t rays = 0;
+                      for (auto r : tile_rays) rays += r;  // fixed reduction order
+                      return rays;
+                  });
 }
 
 }  // namespace iris::renderer::detail

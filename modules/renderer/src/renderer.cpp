@@ -32,20 +32,23 @@ constexpr isa compiled(isa i) noexcept { return IRIS_ISA_DISPATCH ? i : isa::bas
 
 /// \brief A preset's functions, indexed by instruction set.
 template <class P>
-constexpr std::array<render_fn, 3> functions_of() noexcept {
+constexpr std::array<render_fn, 2> functions_of() noexcept {
     using detail::render_preset;
-    return {&render_preset<P, compiled(isa::baseline)>, &render_preset<P, compiled(isa::avx2)>,
-            &render_preset<P, compiled(isa::avx512)>};
+    return {&render_preset<P, compiled(isa::baseline)>, &render_preset<P, compiled(isa::avx2)>};
 }
 
 /// \brief The dispatch table: every preset's functions, in preset-list order.
 constexpr auto preset_table = []<class... P>(type_list<P...>) {
-    return std::array<std::array<render_fn, 3>, sizeof...(P)>{functions_of<P>()...};
+    return std::array<std::array<render_fn, 2>, sizeof...(P)>{functions_of<P>()...};
 }(iris::presets{});
 
-constexpr std::array<render_fn, 3> bsdf_only_table{&detail::render_bsdf_only<compiled(isa::baseline)>,
-                                                   &detail::render_bsdf_only<compiled(isa::avx2)>,
-                                                   &detail::render_bsdf_only<compiled(isa::avx512)>};
+/// \brief Every preset's light tracer (one loop, whatever the instruction set), in preset-list order.
+constexpr auto light_table = []<class... P>(type_list<P...>) {
+    return std::array<render_fn, sizeof...(P)>{&detail::render_light<P>...};
+}(iris::presets{});
+
+constexpr std::array<render_fn, 2> bsdf_only_table{&detail::render_bsdf_only<compiled(isa::baseline)>,
+                                                   &detail::render_bsdf_only<compiled(isa::avx2)>};
 
 /// \brief The one place where a render's runtime choices become a compiled function.
 /// \throws std::invalid_argument for an unknown preset.
@@ -53,11 +56,12 @@ render_fn find_render(const std::string& estimator, const std::string& preset, i
     const auto column = static_cast<std::size_t>(i);
     if (estimator == "bsdf-only") return bsdf_only_table[column];
     const std::size_t index = dispatch_preset(preset, []<class P>() { return preset_index<P>(); });
+    if (estimator == "light") return light_table[index];
     return preset_table[index][column];
 }
 
 /// \brief The instruction sets' names, in `isa`'s order.
-constexpr std::array<const char*, 3> isa_names{"baseline", "avx2", "avx512"};
+constexpr std::array<const char*, 2> isa_names{detail::isa_name(isa::baseline), detail::isa_name(isa::avx2)};
 
 /// \brief The instruction set a render runs with: `requested` ("auto": the best this CPU and
 /// build have), checked against this CPU.
@@ -72,7 +76,10 @@ isa choose_isa(const std::string& requested) {
                                                     requested, fmt::join(available, ", ")));
         return static_cast<isa>(i);
     }
-    throw std::invalid_argument(fmt::format("unknown instruction set '{}' (expected auto, baseline, avx2 or avx512)", requested));
+    if (requested == "avx512")
+        throw std::invalid_argument("instruction set 'avx512' is no longer compiled: its copy of the hot loop was no faster "
+                                    "than the AVX2 one in whole renders (docs/performance.md); use auto, baseline or avx2");
+    throw std::invalid_argument(fmt::format("unknown instruction set '{}' (expected auto, baseline or avx2)", requested));
 }
 
 void validate(const options& o) {
@@ -83,8 +90,8 @@ void validate(const options& o) {
         throw std::invalid_argument(fmt::format("width and height must both be positive (or both 0 for the scene's), got {}x{}",
                                                 o.width, o.height));
     if (o.path.max_depth < 1) throw std::invalid_argument("max depth must be >= 1");
-    if (o.estimator != "nee-mis" && o.estimator != "bsdf-only")
-        throw std::invalid_argument(fmt::format("unknown estimator '{}' (expected nee-mis or bsdf-only)", o.estimator));
+    if (o.estimator != "nee-mis" && o.estimator != "bsdf-only" && o.estimator != "light")
+        throw std::invalid_argument(fmt::format("unknown estimator '{}' (expected nee-mis, light or bsdf-only)", o.estimator));
     if (!parse_sampler(o.sampler))
         throw std::invalid_argument(fmt::format("unknown sampler '{}' (expected independent, sobol or zsobol)", o.sampler));
     if (o.start_spp < 0 || o.start_spp > o.spp)
@@ -136,7 +143,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.height = ht;
     st.spp_total = opt.spp;
     st.spp_done = opt.start_spp;
-    st.isa = isa_names[static_cast<std::size_t>(chosen)];
+    st.isa = isa_names[static_cast<std::size_t>(opt.estimator == "light" ? isa::baseline : chosen)];  // the loop run (set again by a preset without a copy)
     st.sampler = opt.sampler;
     const render_fn fn = find_render(opt.estimator, opt.preset, chosen);
     fn(detail::render_job{scene, tracer, opt, out, st, h});
@@ -148,7 +155,6 @@ std::vector<std::string> instruction_sets() {
 #if IRIS_ISA_DISPATCH
     __builtin_cpu_init();
     if (__builtin_cpu_supports("x86-64-v3")) v.emplace_back("avx2");
-    if (__builtin_cpu_supports("x86-64-v4")) v.emplace_back("avx512");
 #endif
     return v;
 }
@@ -158,7 +164,8 @@ std::vector<preset_info> presets() {
     for_each_preset([&]<class P>() {
         constexpr bool unrestricted = std::is_same_v<typename P::kernel_type, restriction::unrestricted>;
         v.push_back({std::string(P::cli_name), std::string(P::name), P::wavelength_count,
-                     unrestricted || P::bias_type::propagates, P::accumulation_type::fades});
+                     unrestricted || P::bias_type::propagates, P::accumulation_type::fades,
+                     IRIS_ISA_DISPATCH && detail::has_isa_copy<P>});
     });
     return v;
 }

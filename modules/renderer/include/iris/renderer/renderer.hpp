@@ -35,12 +35,17 @@ struct options {
     path_settings path{};
     int tile_size = 16;
     /// \brief Instruction set of the integrator's hot loop: "auto" (the widest this CPU
-    /// runs), or one of `instruction_sets()` ("baseline", "avx2", "avx512"). Every choice
-    /// gives bit-identical images; only the speed differs (docs/performance.md).
+    /// runs), or one of `instruction_sets()` ("baseline", "avx2"). Every choice gives
+    /// bit-identical images; only the speed differs (docs/performance.md). Only the presets
+    /// with `preset_info::isa_copy` have an AVX2 loop; the others, the light tracer and the
+    /// BSDF-only estimator run their baseline loop (`status::isa` says which ran).
     std::string isa = "auto";
-    /// \brief "nee-mis" (the preset's `path_integrator`: next-event estimation, MIS) or
-    /// "bsdf-only" (`bsdf_only_integrator`, iris/render/bsdf_only.hpp: pure BSDF sampling
-    /// at one uniform wavelength, the independent check; the preset is then not used).
+    /// \brief "nee-mis" (the preset's `path_integrator`: next-event estimation, MIS),
+    /// "light" (the preset's `light_integrator`, iris/render/light_tracer.hpp: light tracing,
+    /// one light subpath per pixel per pass splatted onto the film; baseline loop only, so
+    /// `isa` does not apply) or "bsdf-only" (`bsdf_only_integrator`,
+    /// iris/render/bsdf_only.hpp: pure BSDF sampling at one uniform wavelength, the
+    /// independent check; the preset is then not used).
     std::string estimator = "nee-mis";
     /// \brief Where a pixel's random numbers come from: "sobol" (the default: SSIM at 16 spp
     /// +22–29 % over independent sampling on the paper's scenes, as good as "zsobol" and
@@ -63,7 +68,7 @@ struct options {
 /// \brief Where a render is: passed to the hooks and returned at the end.
 struct status {
     std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"; "bsdf-only" for that estimator
-    std::string estimator;         ///< "nee-mis" or "bsdf-only"
+    std::string estimator;         ///< "nee-mis", "light" or "bsdf-only"
     std::string isa;               ///< instruction set the hot loop ran with
     std::string sampler;           ///< "independent", "sobol" or "zsobol"
     int width = 0, height = 0;
@@ -125,8 +130,7 @@ struct hooks {
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h = {});
 
 /// \brief The instruction sets of the hot loop this build and CPU can run, narrowest
-/// first ("baseline" always; "avx2" = x86-64-v3, "avx512" = x86-64-v4 on x86-64 with GCC
-/// or Clang).
+/// first ("baseline" always; "avx2" = x86-64-v3 on x86-64 with GCC).
 std::vector<std::string> instruction_sets();
 
 /// \brief What the renderer knows about a preset.
@@ -141,6 +145,9 @@ struct preset_info {
     /// \brief The film fades the early samples out (accumulation::fade): its image is the
     /// fade's blend, its mean the running mean.
     bool fades = false;
+    /// \brief Its path tracer's hot loop has an AVX2 copy in this build (the presets whose
+    /// B term runs 80 bins wide; docs/performance.md).
+    bool isa_copy = false;
 };
 
 /// \brief Every preset, in the order of the preset list.

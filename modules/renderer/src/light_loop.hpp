@@ -1,0 +1,62 @@
+#pragma once
+// The progressive loop of the light tracer (internal to iris::renderer): the passes of
+// for_each_pass (render_loop.hpp) — ranks, cancellation, hooks, statistics — but each pixel's
+// sample launches one light subpath, whose splats land anywhere on the film; a pass's
+// splats are gathered per thread and added at its end with film::add_pass, which sums
+// them exactly, so no image depends on the thread count, the tiling or the rank count.
+// Compiled for the baseline instruction set only (docs/performance.md: what a copy costs
+// in build time, the light tracer does not yet repay).
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "iris/render/film.hpp"
+#include "iris/render/random.hpp"
+#include "iris/renderer/renderer.hpp"
+#include "render_loop.hpp"
+
+namespace iris::renderer::detail {
+
+template <class Integrator, class Tracer, class DistributionFor>
+void run_light_passes(const Integrator& integ, const Tracer& tracer, const options& opt,
+                      DistributionFor&& distribution_for, film& f, status& st, const hooks& h) {
+    const int w = f.width(), rows = f.height();
+    const sampler_setup sampler =
+        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
+    const double paths = static_cast<double>(w) * static_cast<double>(rows);  // one light subpath per pixel per pass
+    std::vector<std::uint64_t> row_rays(static_cast<std::size_t>(rows));
+    tbb::enumerable_thread_specific<std::vector<splat>> splats;
+    using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
+    for_each_pass(opt, distribution_for, f, st, h,
+                  [&](int i, float alpha, const distribution& dist, tbb::task_arena& arena, const auto& enter) {
+                      for (auto& list : splats) list.clear();
+                      arena.execute([&] {
+                          tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
+                              enter();
+                              std::vector<splat>& out = splats.local();
+                              for (int y = r.begin(); y != r.end(); ++y) {
+                                  std::uint64_t rays = 0;
+                                  for (int x = 0; x < w; ++x) {
+                                      const auto pixel = static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(w) +
+                                                         static_cast<std::uint64_t>(x);
+                                      sample_stream rng(sampler, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
+                                                        pixel, static_cast<std::uint64_t>(i));
+                                      rays += integ.trace(tracer, dist, alpha, rng, paths, out);
+                                  }
+                                  row_rays[static_cast<std::size_t>(y)] = rays;
+                              }
+                          });
+                      });
+                      f.add_pass(splats, static_cast<std::uint64_t>(i));
+                      std::uint64_t rays = 0;
+                      for (auto r : row_rays) rays += r;  // fixed reduction order
+                      return rays;
+                  });
+}
+
+}  // namespace iris::renderer::detail
