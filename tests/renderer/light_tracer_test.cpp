@@ -405,11 +405,13 @@ TEST(LightTracer, TheBTermVanishesAtAlphaOneAndIsUnbiasedWithoutDispersion) {
     EXPECT_LT(restricted[5].mean[1], 0.8 * unrestricted[5].mean[1]);
 }
 
-// Shading normals: a floor whose four vertex normals lean outwards by ~30° (an OBJ with
-// `vn`), under a point light. Path tracing evaluates the BSDF in the shading frame as
-// radiance sees it; light tracing must use the adjoint with the correction
-// |ωo·n_s| |ωi·n_g| / (|ωo·n_g| |ωi·n_s|) to converge to the same image — without it the
-// regions differ by up to the ratio of the cosines. 4 × 4 regions × 3 channels, α = 0.001.
+// Shading normals: a floor whose four vertex normals lean outwards by ~35° (an OBJ with
+// `vn`), under a point light, and a diffuse back wall that the floor lights. Path tracing
+// evaluates the BSDF in the shading frame as radiance sees it; light tracing must use the
+// adjoint with the correction |ωo·n_s| |ωi·n_g| / (|ωo·n_g| |ωi·n_s|) — at the floor's
+// connections to the camera and at its scattering toward the wall — to converge to the
+// same image; without it the regions differ by up to the ratio of the cosines. 4 × 4
+// regions × 3 channels, α = 0.001.
 TEST(LightTracer, AgreesWithThePathTracerOnAMeshWithVertexNormals) {
     const auto dir = std::filesystem::temp_directory_path() / ("iris-light-tracer-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
@@ -422,7 +424,9 @@ TEST(LightTracer, AgreesWithThePathTracerOnAMeshWithVertexNormals) {
     const std::string json = R"({"camera": {"position": [0, 2.2, 2.2], "look_at": [0, 0, 0], "fov": 60, "resolution": [32, 24]},
       "materials": {"r": {"type": "diffuse", "reflectance": 0.5}},
       "lights": [{"type": "point", "position": [0.3, 0.7, 0.2], "spd": "D65", "intensity": 2}],
-      "shapes": [{"type": "mesh", "file": "floor.obj", "material": "r"}]})";
+      "shapes": [{"type": "mesh", "file": "floor.obj", "material": "r"},
+                 {"type": "quad", "size": [3, 3], "material": "r",
+                  "transform": [{"rotate": {"axis": [1, 0, 0], "degrees": 90}}, {"translate": [0, 1.5, -1.5]}]}]})";
     const auto s = iris::scene::parse_scene(json, (dir / "scene.json").string(), dir);
     std::filesystem::remove_all(dir);
     ASSERT_FALSE(s.shapes.at(0).mesh.normals.empty());
