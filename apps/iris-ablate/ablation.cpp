@@ -112,8 +112,10 @@ image external_reference(const scene_desc& scene, const ablation_options& opt, i
 }
 
 image reference_image(const scene_desc& scene, const ablation_options& opt, int w, int h, progress& prog) {
-    const std::string key = fmt::format("{}-{:016x}-{}x{}-ref{}-{}-seed{:x}-v{}", file_safe(scene.name),
-                                        reference_key(scene, opt.scene), w, h, opt.reference_spp, opt.ref_sampler(),
+    // (the path tracer's keys are as before the estimator became a choice, so old caches stay valid)
+    const std::string est = opt.ref_estimator() == "nee-mis" ? std::string() : "-" + opt.ref_estimator();
+    const std::string key = fmt::format("{}-{:016x}-{}x{}-ref{}-{}{}-seed{:x}-v{}", file_safe(scene.name),
+                                        reference_key(scene, opt.scene), w, h, opt.reference_spp, opt.ref_sampler(), est,
                                         reference_seed, iris::version);
     const fs::path cached = opt.cache / (key + ".exr");
     if (fs::exists(cached)) {
@@ -137,6 +139,7 @@ image reference_image(const scene_desc& scene, const ablation_options& opt, int 
     ro.height = h;
     ro.nthold = opt.nthold;
     ro.sampler = opt.ref_sampler();
+    ro.estimator = opt.ref_estimator();
     film f(w, h);
     renderer::hooks hk;
     hk.on_pass = [&](const film&, const renderer::status& st) {
@@ -150,6 +153,7 @@ image reference_image(const scene_desc& scene, const ablation_options& opt, int 
     if (!ec) {
         exr::write(cached, img,
                    {{"iris:scene", scene.name}, {"iris:preset", "hwss"}, {"iris:sampler", opt.ref_sampler()},
+                    {"iris:estimator", opt.ref_estimator()},
                     {"iris:spp", std::to_string(st.spp_done)},
                     {"iris:seed", std::to_string(reference_seed)}, {"iris:version", std::string(iris::version)}});
         prog.line(fmt::format("reference: {} spp in {:.1f} s, cached as {}", st.spp_done, st.seconds, cached.string()));
@@ -196,7 +200,8 @@ ablation_result run_ablation(const ablation_options& opt) {
                   static_cast<double>(opt.presets.size()) * opt.seeds * max_spp);
     if (opt.reference_file.empty()) {
         result.reference = reference_image(scene, opt, w, h, prog);
-        result.reference_source = fmt::format("`hwss`, {} spp, sampler `{}`", opt.reference_spp, opt.ref_sampler());
+        result.reference_source =
+            fmt::format("`hwss`, {} spp, sampler `{}`, estimator `{}`", opt.reference_spp, opt.ref_sampler(), opt.ref_estimator());
     }
 
     for (const auto& preset : opt.presets) {
@@ -209,6 +214,7 @@ ablation_result run_ablation(const ablation_options& opt) {
             ro.width = w;
             ro.height = h;
             ro.sampler = opt.sampler;
+            ro.estimator = opt.estimator;
             ro.spp = opt.budgets.empty() ? max_spp : 10'000'000;  // time-equal: stop by budget
             std::size_t next_spp = 0, next_budget = 0;
             film f(w, h);

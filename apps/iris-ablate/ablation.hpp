@@ -27,8 +27,11 @@ struct ablation_options {
     std::string crop;  ///< "x,y,w,h"; empty: the centre
     std::string sampler = "sobol";  ///< of every preset's renders
     std::string reference_sampler;         ///< of the reference; empty: `sampler`
+    std::string estimator = "nee-mis";     ///< of every preset's renders: nee-mis, bdpt or light
+    std::string reference_estimator;       ///< of the reference; empty: `estimator`
     std::filesystem::path reference_file;  ///< a reference rendered elsewhere; empty: render (or cache) one
     const std::string& ref_sampler() const { return reference_sampler.empty() ? sampler : reference_sampler; }
+    const std::string& ref_estimator() const { return reference_estimator.empty() ? estimator : reference_estimator; }
 };
 
 /// \brief One row of results.csv (and of the time-equal table, where `budget` > 0).

@@ -5,6 +5,7 @@
 //       [--width W --height H (scene's)] [--threads T=all] [--nthold N=512]
 //       [--cache DIR=~/.cache/iris] [--crop x,y,w,h (centre)]
 //       [--sampler independent|sobol|zsobol] [--reference-sampler S (--sampler)]
+//       [--estimator nee-mis|bdpt|light] [--reference-estimator E (--estimator)]
 //       [--reference FILE.exr (instead of rendering one)] -o DIR
 //
 // Renders (or loads from the cache, keyed by scene content, size, seed, reference spp, sampler and code
@@ -57,11 +58,20 @@ int main(int argc, char** argv) {
                    "sampler of the reference (default: --sampler; give the same one to compare runs with different "
                    "--sampler against one reference)")
         ->check(CLI::IsMember({"independent", "sobol", "zsobol"}));
+    app.add_option("--estimator", o.estimator,
+                   "estimator of every preset's renders: nee-mis (path tracing), bdpt (bidirectional) or light "
+                   "(light tracing)")
+        ->check(CLI::IsMember({"nee-mis", "bdpt", "light"}))
+        ->capture_default_str();
+    auto* ref_estimator = app.add_option("--reference-estimator", o.reference_estimator,
+                                         "estimator of the reference (default: --estimator)")
+                              ->check(CLI::IsMember({"nee-mis", "bdpt", "light"}));
     app.add_option("--reference", reference,
                    "an EXR to use as the reference instead of rendering one (e.g. rendered on a cluster): the run's "
                    "size, and of its scene if its header names one")
         ->excludes(ref_spp)
-        ->excludes(ref_sampler);
+        ->excludes(ref_sampler)
+        ->excludes(ref_estimator);
     app.add_option("--cache", cache, "reference cache directory (default ~/.cache/iris)");
     app.add_option("--crop", o.crop, "crop rectangle x,y,w,h for the side-by-side PNG (default: the centre)");
     app.add_option("-o,--output", out, "output directory")->required();

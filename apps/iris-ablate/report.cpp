@@ -137,10 +137,10 @@ void write_report(const ablation_options& opt, const ablation_result& r) {
 
     // summary.md
     std::string md = fmt::format("# Ablation: {}\n\n", scene);
-    md += fmt::format("Reference: {}. Sampler of the renders: `{}`. Seeds: {}. Size: {}x{}. "
+    md += fmt::format("Reference: {}. Sampler of the renders: `{}`, estimator `{}`. Seeds: {}. Size: {}x{}. "
                       "N_thold = {}. Mean ± standard deviation over seeds; gain = SSIM relative to `hwss` at the same "
                       "spp.\n\n",
-                      r.reference_source, opt.sampler, opt.seeds, r.reference.width(), r.reference.height(), opt.nthold);
+                      r.reference_source, opt.sampler, opt.estimator, opt.seeds, r.reference.width(), r.reference.height(), opt.nthold);
     md += "| spp | preset | SSIM | SSIM gain vs hwss | MSE | MSE vs hwss | relMSE | seconds |\n|---|---|---|---|---|---|---|---|\n";
     for (int spp : opt.spp) {
         const auto base_it = by_spp.find("hwss");

@@ -1,7 +1,7 @@
 // iris-compare — two or more presets converging side by side, at the same render time: the
 // comparison of the paper's Figure 1, live in tev.
 //
-//   iris-compare SCENE [--presets hwss,paper] [--seconds T=10 | --spp N] [--tev[=HOST:PORT]]
+//   iris-compare SCENE [--presets hwss,paper,hwss:bdpt] [--seconds T=10 | --spp N] [--tev[=HOST:PORT]]
 //       [--tev-seconds 0.25] [--reference FILE.exr] [-o DIR] [--width W --height H (scene's)]
 //       [--threads T=all] [--seed S=1] [--sampler S=sobol] [--nthold N=512]
 //
@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <tuple>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -128,13 +129,24 @@ std::string file_safe(std::string s) {
     return s;
 }
 
+/// \brief A --presets entry: PRESET, or PRESET:ESTIMATOR (nee-mis, bdpt or light; default nee-mis).
+std::pair<std::string, std::string> preset_and_estimator(const std::string& entry) {
+    const auto colon = entry.find(':');
+    if (colon == std::string::npos) return {entry, "nee-mis"};
+    std::string est = entry.substr(colon + 1);
+    if (est != "nee-mis" && est != "bdpt" && est != "light")
+        throw iris::app::usage_error(
+            fmt::format("--presets entry '{}': unknown estimator '{}' (expected nee-mis, bdpt or light)", entry, est));
+    return {entry.substr(0, colon), est};
+}
+
 int compare_presets(const args& a) {
     const auto presets = iris::app::split_list(a.presets);
     if (presets.size() < 2) throw iris::app::usage_error(fmt::format("--presets needs two or more presets, got '{}'", a.presets));
     if (std::set<std::string>(presets.begin(), presets.end()).size() != presets.size())
         throw iris::app::usage_error(fmt::format("--presets names a preset twice: '{}'", a.presets));
     for (const auto& p : presets) try {
-            (void)iris::renderer::config_name(p);
+            (void)iris::renderer::config_name(preset_and_estimator(p).first);
         } catch (const std::invalid_argument& e) {
             throw iris::app::usage_error(e.what());
         }
@@ -245,7 +257,7 @@ int compare_presets(const args& a) {
         threads.emplace_back([&, i] {
             lane& me = *lanes[static_cast<std::size_t>(i)];
             iris::renderer::options ro;
-            ro.preset = me.preset;
+            std::tie(ro.preset, ro.estimator) = preset_and_estimator(me.preset);
             ro.spp = equal_spp ? a.spp : 10'000'000;
             ro.threads = a.threads;
             ro.seed = a.seed;
@@ -380,7 +392,9 @@ int main(int argc, char** argv) {
     args a;
     int status = 0;
     app.add_option("SCENE", a.scene, "built-in scene name or scene JSON file")->required();
-    app.add_option("--presets", a.presets, "comma-separated presets, left to right (iris-render --list-presets)")
+    app.add_option("--presets", a.presets,
+                   "comma-separated presets, left to right (iris-render --list-presets), each optionally with its "
+                   "estimator: PRESET:bdpt, PRESET:light (default PRESET:nee-mis), e.g. hwss,hwss:bdpt")
         ->capture_default_str();
     auto* sec = app.add_option("--seconds", a.seconds, "render time per preset (equal-time comparison)")->capture_default_str();
     app.add_option("--spp", a.spp, "samples per pixel per preset (equal-spp comparison, instead of --seconds)")->excludes(sec);

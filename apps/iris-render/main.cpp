@@ -4,6 +4,7 @@
 //       [--threads T=all] [--seed S=1] [--nthold N=512] [--width W --height H (scene's)]
 //       [--png OUT.png] [--stats OUT.json] [--every K=0 (spp)] [--every-seconds T=0]
 //       [--half] [--max-depth D=32] [--sampler independent|sobol|zsobol]
+//       [--estimator nee-mis|bdpt|light|bsdf-only] [--strategy S,T] [--unweighted]
 //       [--resume] [--checkpoint-seconds T=600] [--keep-checkpoint]
 //   mpirun -np N iris-render …   (the passes shared between N processes)
 //   iris-render --list-presets | --list-scenes
@@ -87,7 +88,8 @@ namespace fs = std::filesystem;
 
 struct args {
     std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis",
-                sampler = "sobol";
+                sampler = "sobol", strategy;
+    bool unweighted = false;
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
     double every_seconds = 0.0, checkpoint_seconds = 600.0, tev_seconds = 0.25;
     std::string tev;      ///< tev address ("" with --tev alone: the default)
@@ -167,7 +169,11 @@ iris::tev::frame tev_frame(const args& a, const iris::film& f) {
 #endif
 
 iris::renderer::checkpoint_key key_of(const iris::scene_desc& s, const args& a, int width, int height) {
-    return {std::string(iris::version), s.name, iris::scene::fingerprint(s), a.preset, a.estimator, a.sampler, a.seed,
+    // a bidirectional render's strategy choice is part of what its film holds
+    std::string estimator = a.estimator;
+    if (!a.strategy.empty()) estimator += " strategy " + a.strategy;
+    if (a.unweighted) estimator += " unweighted";
+    return {std::string(iris::version), s.name, iris::scene::fingerprint(s), a.preset, estimator, a.sampler, a.seed,
             a.nthold, a.max_depth, a.spp, width, height};
 }
 
@@ -277,6 +283,20 @@ int run_render(const args& a, const ranks_session& mpi) {
     opt.path.max_depth = a.max_depth;
     opt.isa = a.isa;
     opt.estimator = a.estimator;
+    if (!a.strategy.empty()) {
+        int s = -1, t = -1;
+        char comma = 0, extra = 0;
+        if (std::sscanf(a.strategy.c_str(), "%d%c%d%c", &s, &comma, &t, &extra) != 3 || comma != ',' || s < 0 || t < 1 ||
+            (s == 1 && t == 1))
+            throw iris::app::usage_error(fmt::format(
+                "--strategy expects S,T with S >= 0 light vertices and T >= 1 camera vertices, not (1,1), got '{}'",
+                a.strategy));
+        opt.bdpt.only_s = s;
+        opt.bdpt.only_t = t;
+    }
+    opt.bdpt.mis = !a.unweighted;
+    if ((!a.strategy.empty() || a.unweighted) && a.estimator != "bdpt")
+        throw iris::app::usage_error("--strategy and --unweighted need --estimator bdpt");
     opt.sampler = a.sampler;
     opt.rank = mpi.rank();
     opt.ranks = mpi.size();
@@ -471,13 +491,21 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"auto", "baseline", "avx2"}))
         ->capture_default_str();
     app.add_option("--estimator", a.estimator,
-                   "nee-mis (the preset's path tracer: next-event estimation with MIS), light (the preset's light "
+                   "nee-mis (the preset's path tracer: next-event estimation with MIS), bdpt (the preset's "
+                   "bidirectional path tracer: light and camera subpaths, every (s, t) strategy weighted over "
+                   "strategies x wavelengths — caustics; baseline instruction set), light (the preset's light "
                    "tracer: paths from the lights, each vertex connected to the camera — caustics; misses the "
                    "environment and delta lights seen directly and anything seen only in a mirror or through smooth "
                    "glass; baseline instruction set) or bsdf-only (pure BSDF sampling at one uniform wavelength, no "
                    "light sampling: the independent check of nee-mis; the preset is not used)")
-        ->check(CLI::IsMember({"nee-mis", "light", "bsdf-only"}))
+        ->check(CLI::IsMember({"nee-mis", "bdpt", "light", "bsdf-only"}))
         ->capture_default_str();
+    app.add_option("--strategy", a.strategy,
+                   "bdpt: keep only strategy S,T (S light vertices, T camera vertices; e.g. 0,3 = a light hit after "
+                   "one bounce, 2,1 = light tracing of one bounce) — still MIS-weighted unless --unweighted");
+    app.add_flag("--unweighted", a.unweighted,
+                 "bdpt: weight each strategy over the wavelengths alone, not against the other strategies (with "
+                 "--strategy: that strategy's own unbiased estimate of the paths it can make)");
     app.add_option("--sampler", a.sampler,
                    "where each pixel's random numbers come from: independent (a hash per number), sobol "
                    "(Owen-scrambled Sobol' points, per pixel) or zsobol (the same, Morton-ordered over the image: "

@@ -186,14 +186,15 @@ std::vector<lamp> lamps() {
 
 }  // namespace
 
-// Family: every lamp × preset × zone × channel, at family-wise α = 0.001 (Šidák). Each
+// (Passes: 256 for the path tracer, 64 for bdpt.) Family: every lamp × preset × zone × channel, at family-wise α = 0.001 (Šidák). Each
 // zone's mean is over ≥ 256 passes of ≥ 8 pixels; the per-pass zone means are independent,
 // so their spread gives the standard error (normal approximation). Presets biased before
 // N_thold (restriction without propagation) are judged on the passes after it only.
-TEST(DirectLight, EveryPresetMatchesTheExactIrradianceOfPolygonalLamps) {
-    const auto all = lamps();
+namespace {
+void every_preset_matches_the_exact_irradiance(const std::string& estimator, const std::vector<lamp>& all, int nthold,
+                                               int passes) {
     const auto presets = iris::renderer::presets();
-    constexpr int nthold = 64, spp_unbiased = 256, spp_biased = nthold + 256;
+    const int spp_unbiased = passes, spp_biased = nthold + passes;
     constexpr std::size_t min_pixels = 8;
     const double z_max = iris_test::sidak_z(0.001, all.size() * presets.size() * zones * 3);
     std::printf("threshold |z| <= %.2f (%zu lamps x %zu presets x %zu zones x 3 channels, family-wise alpha 0.001)\n",
@@ -212,6 +213,7 @@ TEST(DirectLight, EveryPresetMatchesTheExactIrradianceOfPolygonalLamps) {
             }
         for (const auto& p : presets) {
             iris::renderer::options o;
+            o.estimator = estimator;
             o.preset = p.name;
             o.nthold = nthold;
             o.spp = p.unbiased_before_nthold ? spp_unbiased : spp_biased;
@@ -227,7 +229,7 @@ TEST(DirectLight, EveryPresetMatchesTheExactIrradianceOfPolygonalLamps) {
                     const double want = e[c] * phi[z] / static_cast<double>(count[z]);
                     const double zscore = (est[z].mean[c] - want) / est[z].se[c];
                     if (c == 1 && p.name == "hwss")
-                        std::printf("%-50s %-14s zone %.2f-%.2f m: Y %.5f exact %.5f ratio %.4f z %+.2f\n", l.name.c_str(),
+                        std::printf("%-8s %-50s %-14s zone %.2f-%.2f m: Y %.5f exact %.5f ratio %.4f z %+.2f\n", estimator.c_str(), l.name.c_str(),
                                     p.name.c_str(), zone_edges[z], zone_edges[z + 1], est[z].mean[c], want,
                                     est[z].mean[c] / want, zscore);
                     EXPECT_LE(std::fabs(zscore), z_max)
@@ -238,4 +240,17 @@ TEST(DirectLight, EveryPresetMatchesTheExactIrradianceOfPolygonalLamps) {
             }
         }
     }
+}
+}  // namespace
+
+TEST(DirectLight, EveryPresetMatchesTheExactIrradianceOfPolygonalLamps) { every_preset_matches_the_exact_irradiance("nee-mis", lamps(), 64, 256); }
+
+// The same under bidirectional path tracing: a pixel of the plane is lit by paths of three
+// vertices, made by three strategies — the camera ray's BSDF sample hitting the lamp (0, 3),
+// next-event estimation (1, 2) and the lamp's light subpath joined to the camera (2, 1) — so
+// the exact irradiance checks their weights and the light tracing's splats together. Four
+// of the lamps (one-sided, two-sided, small and near, tilted).
+TEST(DirectLight, EveryPresetUnderBdptMatchesTheExactIrradianceOfPolygonalLamps) {
+    const auto all = lamps();
+    every_preset_matches_the_exact_irradiance("bdpt", {all[0], all[1], all[5], all[6]}, 16, 64);
 }

@@ -69,6 +69,14 @@ struct path_settings {
     int rr_start_depth = 3;  ///< Russian roulette from this depth on
 };
 
+/// \brief Which strategies a bidirectional render keeps, and how it weights them
+/// (`bdpt_integrator`, iris/render/bdpt.hpp).
+struct bdpt_settings {
+    bool mis = true;  ///< false: each strategy weighted over the wavelengths alone (docs/method.md §3)
+    int only_s = -1;  ///< ≥ 0: only strategies with this many light vertices
+    int only_t = -1;  ///< ≥ 0: only strategies with this many camera vertices
+};
+
 namespace detail {
 /// \brief The B term's bin count of a config: its bias policy's `bins` (80 — 5 nm on
 /// 380–780 nm — for PropagateUnused; fewer for `propagate_coarse<B>`); 1 (unused) for

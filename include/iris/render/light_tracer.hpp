@@ -65,6 +65,58 @@
 
 namespace iris {
 
+namespace detail {
+/// \brief XYZ of a subpath's contributions (light tracing, bidirectional): the C
+/// wavelengths' values through the restriction's weights r_α(λ_j)/p_α(λ_j) (÷ Z_α for
+/// ScaledPdf; computed once per sample), the B term's added by the caller, then × k
+/// (1/(paths · ∫ȳ) for splats).
+template <class Config, std::size_t C>
+struct splat_weights {
+    std::array<double, C> w{};
+    const sampled_wavelengths<C>& wl;
+    double k;
+    template <class Distribution>
+    splat_weights(const Distribution& dist, const sampled_wavelengths<C>& wavelengths, double scale) noexcept
+        : wl(wavelengths), k(scale) {
+        const float z = Config::bias_type::scales_pdf ? dist.normalisation() : 1.0f;
+        for (std::size_t j = 0; j < C; ++j)
+            if (wl.pdf(j) > 0.0f) w[j] = Config::bias_type::restricted_factor(dist.restriction(wl[j]), wl.pdf(j), z);
+    }
+    xyz hero(const sampled_spectrum<C>& value) const noexcept {
+        xyz v;
+        for (std::size_t j = 0; j < C; ++j)
+            if (w[j] != 0.0 && value[j] != 0.0f) add_cmf(v, w[j] * static_cast<double>(value[j]), wl[j]);
+        return v;
+    }
+    xyz finish(const xyz& v) const noexcept { return {v.x * k, v.y * k, v.z * k}; }
+};
+/// \brief A vertex's connection to the camera: the pixel it projects to, the unit
+/// direction from it toward the camera, W_e cos θ_c / d² (the camera's importance and
+/// its cosine, per unit area at the vertex: 1/(A_p cos³θ_c d²), camera.hpp) and the shadow
+/// segment to test.
+struct camera_link {
+    std::uint32_t pixel = 0;
+    glm::vec3 w{0.0f};
+    float g = 0.0f;
+    shadow_segment shadow;
+};
+inline std::optional<camera_link> to_camera(const camera_rays& camera, const surface_point& sp, const glm::vec3& ng) noexcept {
+    const glm::vec3 d = sp.p - camera.origin();
+    const float d2 = glm::dot(d, d);
+    if (!(d2 > 0.0f) || !std::isfinite(d2)) return std::nullopt;
+    const glm::vec3 from_camera = d / std::sqrt(d2);
+    const auto r = camera.raster(from_camera);
+    if (!r) return std::nullopt;
+    camera_link l;
+    l.pixel = static_cast<std::uint32_t>(static_cast<int>(r->y) * camera.width() + static_cast<int>(r->x));
+    l.w = -from_camera;
+    l.g = camera.pdf_direction(from_camera) / d2;  // W_e cos θ_c = 1/(A_p cos³θ_c)
+    const glm::vec3 o = offset_ray_origin(sp, ng, l.w);
+    l.shadow = {o, camera.origin() - o, 1.0f - 1e-4f};
+    return l;
+}
+}  // namespace detail
+
 template <class Config, std::size_t Bins = detail::bins_of<Config>()>
 class light_integrator {
 public:
@@ -105,7 +157,7 @@ public:
         sampled_spectrum<C> rho(1.0f);
 
         if (on_surface) {  // the emitter's own point, seen by the camera
-            const auto link = to_camera(ls->origin, ls->normal);
+            const auto link = detail::to_camera(m_camera, ls->origin, ls->normal);
             const std::uint32_t e = ls->le.first;
             const float c = link ? glm::dot(ls->normal, link->w) : 0.0f;
             if (link && (m_scene.emitters[e].two_sided ? c != 0.0f : c > 0.0f)) {
@@ -144,7 +196,7 @@ public:
                 const sampled_spectra<C> hero = m_hero.at_vertex(bxdf, m_scene, shape.material, vx.uv, wl, albedo);
                 bterm.enter(bxdf, shape.material, albedo);
                 if constexpr (!B::delta) {
-                    if (const auto link = to_camera(vx.sp, vx.ng)) {
+                    if (const auto link = detail::to_camera(m_camera, vx.sp, vx.ng)) {
                         // f*(ωo, ωc)·|ωc·n_s| with the shading correction: f(ωc, ωo)·|ωo·n_s| · |ωc·n_g| / |ωo·n_g|
                         const glm::vec3 lc = vx.to_local(link->w);
                         const float k = std::fabs(glm::dot(link->w, vx.ng)) / wo_ng * link->g;
@@ -197,60 +249,11 @@ public:
 
 private:
     using propagation_type = std::conditional_t<propagates, propagation<Bins>, no_propagation>;
+    using splat_weights = detail::splat_weights<Config, C>;
     propagation_type make_propagation() const noexcept {
         if constexpr (propagates) return propagation_type(m_bins);
         else return {};
     }
-
-    /// \brief A vertex's connection to the camera: the pixel it projects to, the unit
-    /// direction from it toward the camera, W_e cos θ_c / d² (the camera's importance and
-    /// its cosine, per unit area at the vertex: 1/(A_p cos³θ_c d²), camera.hpp) and the shadow
-    /// segment to test.
-    struct camera_link {
-        std::uint32_t pixel = 0;
-        glm::vec3 w{0.0f};
-        float g = 0.0f;
-        shadow_segment shadow;
-    };
-    std::optional<camera_link> to_camera(const surface_point& sp, const glm::vec3& ng) const noexcept {
-        const glm::vec3 d = sp.p - m_camera.origin();
-        const float d2 = glm::dot(d, d);
-        if (!(d2 > 0.0f) || !std::isfinite(d2)) return std::nullopt;
-        const glm::vec3 from_camera = d / std::sqrt(d2);
-        const auto r = m_camera.raster(from_camera);
-        if (!r) return std::nullopt;
-        camera_link l;
-        l.pixel = static_cast<std::uint32_t>(static_cast<int>(r->y) * m_camera.width() + static_cast<int>(r->x));
-        l.w = -from_camera;
-        l.g = m_camera.pdf_direction(from_camera) / d2;  // W_e cos θ_c = 1/(A_p cos³θ_c)
-        const glm::vec3 o = offset_ray_origin(sp, ng, l.w);
-        l.shadow = {o, m_camera.origin() - o, 1.0f - 1e-4f};
-        return l;
-    }
-
-    /// \brief XYZ of a light subpath's splats: the C wavelengths' values through the
-    /// restriction's weights (÷ Z_α for ScaledPdf; computed once per subpath), the B term's
-    /// added by the caller, then ÷ (paths · ∫ȳ).
-    struct splat_weights {
-        std::array<double, C> w{};
-        const sampled_wavelengths<C>& wl;
-        double k;
-        template <class Distribution>
-        splat_weights(const Distribution& dist, const sampled_wavelengths<C>& wavelengths, double scale) noexcept
-            : wl(wavelengths), k(scale) {
-            const float z = scales_pdf ? dist.normalisation() : 1.0f;
-            for (std::size_t j = 0; j < C; ++j)
-                if (wl.pdf(j) > 0.0f)
-                    w[j] = Config::bias_type::restricted_factor(dist.restriction(wl[j]), wl.pdf(j), z);
-        }
-        xyz hero(const sampled_spectrum<C>& value) const noexcept {
-            xyz v;
-            for (std::size_t j = 0; j < C; ++j)
-                if (w[j] != 0.0 && value[j] != 0.0f) add_cmf(v, w[j] * static_cast<double>(value[j]), wl[j]);
-            return v;
-        }
-        xyz finish(const xyz& v) const noexcept { return {v.x * k, v.y * k, v.z * k}; }
-    };
 
     const scene_desc& m_scene;
     const light_sampler& m_lights;

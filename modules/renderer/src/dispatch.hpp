@@ -42,6 +42,10 @@ using render_fn = void (*)(const render_job&);
 template <class Preset, isa I>
 void render_preset(const render_job& job);
 
+/// \brief The preset's `bdpt_integrator<Preset>` (bidirectional path tracing, splats), baseline loop only.
+template <class Preset>
+void render_bdpt(const render_job& job);
+
 /// \brief The preset's `light_integrator<Preset>` (light tracing, splats), baseline loop only.
 template <class Preset>
 void render_light(const render_job& job);

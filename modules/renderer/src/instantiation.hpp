@@ -5,6 +5,7 @@
 #include <optional>
 #include <utility>
 
+#include "iris/render/bdpt.hpp"
 #include "iris/render/bsdf_only.hpp"
 #include "iris/render/camera.hpp"
 #include "iris/render/integrator.hpp"
@@ -70,6 +71,15 @@ void render_light(const render_job& job) {
     const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
     const light_integrator<Preset> integ(job.scene, lights, cam, job.opt.path);
     run_light_passes(integ, job.tracer, job.opt, passes, job.out, job.st, job.h);
+}
+
+template <class Preset>
+void render_bdpt(const render_job& job) {
+    preset_passes<Preset> passes(job);
+    const light_sampler lights(job.scene);
+    const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
+    const bdpt_integrator<Preset> integ(job.scene, lights, cam, job.opt.path, job.opt.bdpt);
+    run_bdpt_passes(integ, job.tracer, cam, job.opt, passes, job.out, job.st, job.h);
 }
 
 /// The independent estimator: no wavelength policy (its loop's distribution is an empty

@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "iris/render/camera.hpp"
 #include "iris/render/film.hpp"
 #include "iris/render/random.hpp"
 #include "iris/renderer/renderer.hpp"
@@ -47,6 +48,62 @@ void run_light_passes(const Integrator& integ, const Tracer& tracer, const optio
                                       sample_stream rng(sampler, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
                                                         pixel, static_cast<std::uint64_t>(i));
                                       rays += integ.trace(tracer, dist, alpha, rng, paths, out);
+                                  }
+                                  row_rays[static_cast<std::size_t>(y)] = rays;
+                              }
+                          });
+                      });
+                      f.add_pass(splats, static_cast<std::uint64_t>(i));
+                      std::uint64_t rays = 0;
+                      for (auto r : row_rays) rays += r;  // fixed reduction order
+                      return rays;
+                  });
+}
+
+/// \brief The light subpaths' sampler of a bidirectional render: the same kind, its own
+/// seed, so a pixel's light subpath numbers are a second stream of that pixel and sample
+/// (stratified within itself for the Sobol' samplers), independent of the camera's.
+inline sampler_setup light_stream_setup(sampler_setup s) noexcept {
+    s.seed = iris::detail::counter_hash(s.seed ^ 0x6c69676874ull);  // "light"
+    return s;
+}
+
+/// \brief The progressive loop of bidirectional path tracing: each pixel's sample is a camera
+/// subpath (jittered in the pixel, the pixel's stream) and a light subpath (the pixel's
+/// second stream, `light_stream_setup`); everything it adds — its own pixel's value and the
+/// t = 1 splats — goes through the per-thread splat lists and film::add_pass, as the light
+/// tracer's.
+template <class Integrator, class Tracer, class DistributionFor>
+void run_bdpt_passes(const Integrator& integ, const Tracer& tracer, const camera_rays& cam, const options& opt,
+                     DistributionFor&& distribution_for, film& f, status& st, const hooks& h) {
+    const int w = f.width(), rows = f.height();
+    const sampler_setup sampler =
+        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
+    const sampler_setup light_sampler = light_stream_setup(sampler);
+    std::vector<std::uint64_t> row_rays(static_cast<std::size_t>(rows));
+    tbb::enumerable_thread_specific<std::vector<splat>> splats;
+    tbb::enumerable_thread_specific<typename Integrator::workspace> spaces;
+    using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
+    for_each_pass(opt, distribution_for, f, st, h,
+                  [&](int i, float alpha, const distribution& dist, tbb::task_arena& arena, const auto& enter) {
+                      for (auto& list : splats) list.clear();
+                      arena.execute([&] {
+                          tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
+                              enter();
+                              std::vector<splat>& out = splats.local();
+                              auto& ws = spaces.local();
+                              for (int y = r.begin(); y != r.end(); ++y) {
+                                  std::uint64_t rays = 0;
+                                  for (int x = 0; x < w; ++x) {
+                                      const auto pixel = static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(w) +
+                                                         static_cast<std::uint64_t>(x);
+                                      const auto ux = static_cast<std::uint32_t>(x), uy = static_cast<std::uint32_t>(y);
+                                      const auto sample = static_cast<std::uint64_t>(i);
+                                      sample_stream rng(sampler, ux, uy, pixel, sample);
+                                      sample_stream lrng(light_sampler, ux, uy, pixel, sample);
+                                      const glm::vec3 d = cam.direction(x, y, rng.next2());
+                                      rays += integ.trace(tracer, static_cast<std::uint32_t>(pixel), d, dist, alpha, rng,
+                                                          lrng, ws, out);
                                   }
                                   row_rays[static_cast<std::size_t>(y)] = rays;
                               }

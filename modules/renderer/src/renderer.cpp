@@ -42,6 +42,11 @@ constexpr auto preset_table = []<class... P>(type_list<P...>) {
     return std::array<std::array<render_fn, 2>, sizeof...(P)>{functions_of<P>()...};
 }(iris::presets{});
 
+/// \brief Every preset's bidirectional path tracer (one loop, whatever the instruction set), in preset-list order.
+constexpr auto bdpt_table = []<class... P>(type_list<P...>) {
+    return std::array<render_fn, sizeof...(P)>{&detail::render_bdpt<P>...};
+}(iris::presets{});
+
 /// \brief Every preset's light tracer (one loop, whatever the instruction set), in preset-list order.
 constexpr auto light_table = []<class... P>(type_list<P...>) {
     return std::array<render_fn, sizeof...(P)>{&detail::render_light<P>...};
@@ -57,6 +62,7 @@ render_fn find_render(const std::string& estimator, const std::string& preset, i
     if (estimator == "bsdf-only") return bsdf_only_table[column];
     const std::size_t index = dispatch_preset(preset, []<class P>() { return preset_index<P>(); });
     if (estimator == "light") return light_table[index];
+    if (estimator == "bdpt") return bdpt_table[index];
     return preset_table[index][column];
 }
 
@@ -90,8 +96,14 @@ void validate(const options& o) {
         throw std::invalid_argument(fmt::format("width and height must both be positive (or both 0 for the scene's), got {}x{}",
                                                 o.width, o.height));
     if (o.path.max_depth < 1) throw std::invalid_argument("max depth must be >= 1");
-    if (o.estimator != "nee-mis" && o.estimator != "bsdf-only" && o.estimator != "light")
-        throw std::invalid_argument(fmt::format("unknown estimator '{}' (expected nee-mis, light or bsdf-only)", o.estimator));
+    if (o.estimator != "nee-mis" && o.estimator != "bsdf-only" && o.estimator != "light" && o.estimator != "bdpt")
+        throw std::invalid_argument(
+            fmt::format("unknown estimator '{}' (expected nee-mis, bdpt, light or bsdf-only)", o.estimator));
+    if (o.estimator != "bdpt" && (o.bdpt.only_s >= 0 || o.bdpt.only_t >= 0 || !o.bdpt.mis))
+        throw std::invalid_argument("bidirectional strategy settings (a single (s, t), unweighted) need the bdpt estimator");
+    if (o.bdpt.only_t == 0) throw std::invalid_argument("strategy t = 0 does not exist (the pinhole cannot be hit): t >= 1");
+    if (o.bdpt.only_s == 1 && o.bdpt.only_t == 1)
+        throw std::invalid_argument("strategy (s, t) = (1, 1) is not used: a light seen directly is (0, 2)");
     if (!parse_sampler(o.sampler))
         throw std::invalid_argument(fmt::format("unknown sampler '{}' (expected independent, sobol or zsobol)", o.sampler));
     if (o.start_spp < 0 || o.start_spp > o.spp)
@@ -143,7 +155,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.height = ht;
     st.spp_total = opt.spp;
     st.spp_done = opt.start_spp;
-    st.isa = isa_names[static_cast<std::size_t>(opt.estimator == "light" ? isa::baseline : chosen)];  // the loop run (set again by a preset without a copy)
+    st.isa = isa_names[static_cast<std::size_t>(opt.estimator == "light" || opt.estimator == "bdpt" ? isa::baseline : chosen)];  // the loop run (set again by a preset without a copy)
     st.sampler = opt.sampler;
     const render_fn fn = find_render(opt.estimator, opt.preset, chosen);
     fn(detail::render_job{scene, tracer, opt, out, st, h});

@@ -51,6 +51,9 @@ struct triangle {
         out.pdf = probability / area * d2 / std::fabs(cos_l);
         out.le = {emitter, 1, {1.0f, 0.0f, 0.0f}};
         out.shadow = shadow_ray_between(ref, ng, q, n);
+        out.point = q.p;
+        out.normal = n;
+        out.pdf_emit = (two_sided ? 0.5f : 1.0f) * std::fabs(cos_l) / pi;  // sample_le's cosine lobe on the side facing ref
         return out;
     }
 

@@ -29,6 +29,7 @@ struct distant_light {
         out.wi = -direction;
         out.pdf = probability;
         out.delta = true;
+        out.infinite = true;
         out.le = {emitter, 1, {1.0f, 0.0f, 0.0f}};
         out.shadow = {offset_ray_origin(ref, ng, out.wi), out.wi, std::numeric_limits<float>::infinity()};
         return out;
@@ -42,6 +43,7 @@ struct distant_light {
         out.dir = direction;
         out.pdf_pos = probability / (pi * radius * radius);
         out.pdf_dir = 1.0f;  // delta in direction
+        out.infinite = true;
         out.le = {emitter, 1, {1.0f, 0.0f, 0.0f}};
         return out;
     }

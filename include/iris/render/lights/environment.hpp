@@ -94,6 +94,7 @@ public:
         out.wi = s->dir;
         out.pdf = probability * s->pdf;
         out.le = s->le;
+        out.infinite = true;
         out.shadow = {offset_ray_origin(ref, ng, s->dir), s->dir, std::numeric_limits<float>::infinity()};
         return out;
     }
@@ -112,6 +113,7 @@ public:
         out.pdf_pos = probability / (pi * radius * radius);
         out.pdf_dir = s->pdf;
         out.le = s->le;
+        out.infinite = true;
         return out;
     }
 

@@ -41,6 +41,12 @@ struct light_li {
     emission_ref le;       ///< what arrives along wi (delta lights: already divided by r², times the falloff)
     shadow_segment shadow; ///< what must be unoccluded (t_max = ∞ for lights at infinity)
     bool delta = false;    ///< point, spot, distant: no BSDF strategy reaches it
+    // For bidirectional MIS (iris/render/bdpt.hpp): where the light was sampled and how
+    // likely `sample_le` would have been to emit toward the reference point.
+    bool infinite = false;   ///< distant, environment: the light is at infinity (`point`, `pdf_emit` unset)
+    glm::vec3 point{0.0f};   ///< finite lights: the point sampled on an area light, a point or spot light's position
+    glm::vec3 normal{0.0f};  ///< area lights: the unit normal of the sampled point (0 for the others)
+    float pdf_emit = 0.0f;   ///< finite lights: solid-angle density of `sample_le` emitting toward the reference point
 };
 
 /// \brief An emitted ray: the start of a light subpath.
@@ -51,6 +57,7 @@ struct light_le {
     float pdf_pos = 0.0f;  ///< area density of the origin, selection included (delta in position: the selection probability)
     float pdf_dir = 0.0f;  ///< solid-angle density of dir
     emission_ref le;       ///< the radiance (or intensity) leaving along dir
+    bool infinite = false; ///< distant, environment: the origin is on a disk outside the scene, not on the light
 };
 
 }  // namespace iris

@@ -66,6 +66,8 @@ struct point_light {
         out.le = {emitter, 1, {s / d2, 0.0f, 0.0f}};
         const glm::vec3 o = offset_ray_origin(ref, ng, to_light);
         out.shadow = {o, position - o, 1.0f - 1e-4f};
+        out.point = position;
+        out.pdf_emit = is_spot() ? 1.0f / (2.0f * pi * (1.0f - cos_total_width)) : 1.0f / (4.0f * pi);  // s > 0: inside the cone
         return out;
     }
 

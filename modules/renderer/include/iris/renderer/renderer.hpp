@@ -41,12 +41,18 @@ struct options {
     /// BSDF-only estimator run their baseline loop (`status::isa` says which ran).
     std::string isa = "auto";
     /// \brief "nee-mis" (the preset's `path_integrator`: next-event estimation, MIS),
+    /// "bdpt" (the preset's `bdpt_integrator`, iris/render/bdpt.hpp: bidirectional path
+    /// tracing, every (s, t) strategy weighted over strategies × wavelengths; t = 1 splatted;
+    /// baseline loop only),
     /// "light" (the preset's `light_integrator`, iris/render/light_tracer.hpp: light tracing,
     /// one light subpath per pixel per pass splatted onto the film; baseline loop only, so
     /// `isa` does not apply) or "bsdf-only" (`bsdf_only_integrator`,
     /// iris/render/bsdf_only.hpp: pure BSDF sampling at one uniform wavelength, the
     /// independent check; the preset is then not used).
     std::string estimator = "nee-mis";
+    /// \brief Bidirectional strategies kept and their weighting (bdpt only): one (s, t)
+    /// alone, or each unweighted over strategies — the pieces docs/method.md §3 sums.
+    bdpt_settings bdpt{};
     /// \brief Where a pixel's random numbers come from: "sobol" (the default: SSIM at 16 spp
     /// +22–29 % over independent sampling on the paper's scenes, as good as "zsobol" and
     /// cheaper; docs/results.md#samplers), "zsobol" or "independent" (iris/render/random.hpp:
@@ -68,7 +74,7 @@ struct options {
 /// \brief Where a render is: passed to the hooks and returned at the end.
 struct status {
     std::string config_name;       ///< e.g. "multibox3/linear/C4/propagate"; "bsdf-only" for that estimator
-    std::string estimator;         ///< "nee-mis", "light" or "bsdf-only"
+    std::string estimator;         ///< "nee-mis", "bdpt", "light" or "bsdf-only"
     std::string isa;               ///< instruction set the hot loop ran with
     std::string sampler;           ///< "independent", "sobol" or "zsobol"
     int width = 0, height = 0;
