@@ -157,10 +157,16 @@ TEST(Film, APassOfSplatsIsOneSamplePerPixelWhateverTheListsAndOrder) {
     for (std::size_t k = 0; k < shuffled.size(); ++k) lists[k % 3].push_back(shuffled[k]);
     lists.emplace_back();  // a thread that splatted nothing
 
-    iris::film one(w, h), split(w, h), reference(w, h);
+    iris::film one(w, h), split(w, h), chunked(w, h);
     for (std::uint64_t pass = 0; pass < 2; ++pass) {
         one.add_pass(std::vector<std::vector<iris::splat>>{all}, pass);
         split.add_pass(lists, pass);
+        // in pieces, as the splatting loops hand over full lists while they render
+        chunked.begin_pass();
+        for (std::size_t k = 0; k < shuffled.size(); k += 37)
+            chunked.add_splats(std::vector<iris::splat>(shuffled.begin() + static_cast<std::ptrdiff_t>(k),
+                                                        shuffled.begin() + static_cast<std::ptrdiff_t>(std::min(k + 37, shuffled.size()))));
+        chunked.end_pass(pass);
     }
     // the reference: each pixel's exact total, summed in fixed point as add_pass must
     std::vector<iris::exact_xyz> totals(n);
@@ -171,6 +177,8 @@ TEST(Film, APassOfSplatsIsOneSamplePerPixelWhateverTheListsAndOrder) {
     }
     for (std::size_t i = 0; i < n; ++i) {
         EXPECT_EQ(one.sum(i), split.sum(i));
+        EXPECT_EQ(one.sum(i), chunked.sum(i));
+        EXPECT_EQ(chunked.samples(i), 2u);
         const iris::exact_xyz twice{2 * totals[i].x, 2 * totals[i].y, 2 * totals[i].z};
         EXPECT_EQ(one.sum(i), twice) << i;
         EXPECT_EQ(one.samples(i), 2u);

@@ -216,6 +216,67 @@ TEST(Bdpt, AgreesWithThePathTracerThroughSmoothDispersiveGlass) {
     EXPECT_LE(power, 0.11) << "the test has lost its power";
 }
 
+namespace {
+/// \brief Unpolarised Fresnel reflectance of a dielectric interface of relative index eta
+/// at incidence cosine c (from the outside).
+double fresnel(double c, double eta) {
+    const double s2 = (1.0 - c * c) / (eta * eta);
+    if (s2 >= 1.0) return 1.0;
+    const double ct = std::sqrt(1.0 - s2);
+    const double rs = (c - eta * ct) / (c + eta * ct), rp = (eta * c - ct) / (eta * c + ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+}  // namespace
+
+// A caustic with a closed form: a huge Lambertian sky (luminance 1, D65, 400 m square, 3 m
+// up, facing down) shines through a plane-parallel smooth glass slab (η = 1.5, 0.1 m thick,
+// 2 m up) onto a diffuse floor (ρ = 0.5); the camera, between floor and slab, sees only
+// floor. Radiance is unchanged through a parallel slab, scaled by its transmittance
+// T(θ) = (1 − F)/(1 + F) (two interfaces, the internal reflections summed; F the unpolarised
+// Fresnel reflectance, as iris's dielectric has it at each interface); the floor also sees
+// its own light reflected by the slab, R(θ) = 2F/(1 + F). With ⟨g⟩ = 2∫ g(θ) cos θ sin θ dθ,
+// every floor pixel has Y = ρ ⟨T⟩ / (1 − ρ ⟨R⟩) (the sky's edge, 89° off the vertical,
+// leaves out 2e-4 of it). The light reaches the floor only through delta vertices: next-event
+// estimation is blocked, and the strategies that can see it are s = 0 and the light
+// subpaths'. The path tracer too, for the same price. Family: 2 estimators, α = 0.001.
+TEST(Bdpt, AGlassSlabTransmitsTheExactFresnelFlux) {
+    const std::string json = R"({"camera": {"position": [0, 1, 0], "look_at": [0, 0, 1.5], "fov": 40, "resolution": [24, 16]},
+      "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}, "black": {"type": "diffuse", "reflectance": 0},
+                    "glass": {"type": "dielectric", "ior": 1.5}},
+      "emitters": {"sky": {"spd": "D65", "luminance": 1}},
+      "shapes": [{"type": "quad", "size": [400, 400], "material": "floor"},
+                 {"type": "quad", "size": [400, 400], "material": "black", "emitter": "sky",
+                  "transform": [{"rotate": {"axis": [1, 0, 0], "degrees": 180}}, {"translate": [0, 3, 0]}]},
+                 {"type": "box", "size": [400, 0.1, 400], "material": "glass", "transform": [{"translate": [0, 2, 0]}]}]})";
+    const auto s = iris::scene::parse_scene(json, "slab", ".");
+    double t_mean = 0.0, r_mean = 0.0;
+    constexpr int steps = 200000;
+    for (int i = 0; i < steps; ++i) {
+        const double theta = (i + 0.5) / steps * 0.5 * 3.14159265358979323846;
+        const double f = fresnel(std::cos(theta), 1.5);
+        const double w = 2.0 * std::cos(theta) * std::sin(theta) * (0.5 * 3.14159265358979323846 / steps);
+        t_mean += w * (1.0 - f) / (1.0 + f);
+        r_mean += w * 2.0 * f / (1.0 + f);
+    }
+    const double exact = 0.5 * t_mean / (1.0 - 0.5 * r_mean);
+    std::printf("<T> = %.6f, <R> = %.6f, floor Y = %.6f\n", t_mean, r_mean, exact);
+    EXPECT_NEAR(t_mean + r_mean, 1.0, 1e-6);
+    const double z = iris_test::sidak_z(0.001, 2);
+    double worst = 0.0;
+    for (const char* est : {"bdpt", "nee-mis"}) {
+        auto o = bdpt_options("hwss", 512, 31);
+        o.estimator = est;
+        o.path.max_depth = 100;
+        const auto e = iris_test::grid_estimates(s, o, 1, 1)[0];
+        std::printf("%s: Y %.5f ± %.5f, ratio %.4f, z %+.2f\n", est, e.mean[1], e.se[1], e.mean[1] / exact,
+                    (e.mean[1] - exact) / e.se[1]);
+        EXPECT_NEAR(e.mean[1], exact, z * e.se[1]) << est;
+        worst = std::max(worst, (z + 1.2816) * e.se[1] / exact);
+    }
+    std::printf("a relative error of Y of %.2f %% is detected with 90 %% power\n", 100.0 * worst);
+    EXPECT_LE(worst, 0.03) << "the test has lost its power";
+}
+
 // At α = 1 the B term is off: a propagating config adds exactly what the config without B
 // adds, splat for splat, bit for bit.
 TEST(Bdpt, TheBTermIsOffAtAlphaOne) {

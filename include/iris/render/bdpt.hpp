@@ -168,11 +168,16 @@ public:
             if (!si) break;
             const surface_interaction& vx = *si;
             {
+                // a hit at exactly grazing incidence (or at no distance) has no area density,
+                // which every weight through it divides by: the path ends there, as a light
+                // subpath's does (a set of measure zero)
+                const glm::vec3 d = vx.sp.p - ws.camera.back().p;
+                const float d2 = glm::dot(d, d), cos_in = std::fabs(glm::dot(vx.ng, vx.wo));
+                if (!(d2 > 0.0f) || !(cos_in > 0.0f)) break;
                 camera_vertex z;
                 z.p = vx.sp.p;
                 z.ng = vx.ng;
-                const glm::vec3 d = z.p - ws.camera.back().p;
-                z.pdf_fwd = pdf_dir * (std::fabs(glm::dot(vx.ng, vx.wo)) / glm::dot(d, d));
+                z.pdf_fwd = pdf_dir * (cos_in / d2);
                 ws.camera.push_back(z);
             }
             if (shape.emitter) hit_emitter(*shape.emitter, vx, wl, beta, prev_delta, prev_pdf0, sc, ws, bterm, own);
@@ -267,16 +272,20 @@ private:
         float d = 0.0f;
         for (std::size_t k = 0; k < C; ++k) {
             // suffix[sp] = Π_{i ≥ sp} p←_i(λ_k)/h_i, prefix = Π_{i < sp} p→_i(λ_k)/h_i
+            // (a density that is exactly 0 makes its products exactly 0, even where the others
+            // have overflowed: such a technique has no density, whatever else it has)
             ws.suffix[n] = 1.0f;
             for (std::size_t i = n; i-- > 0;) {
                 const float h = i < s ? e[i].pl[0] : e[i].pe[0];
-                ws.suffix[i] = ws.suffix[i + 1] * (e[i].pe[k] / h);
+                const float r = e[i].pe[k] / h;
+                ws.suffix[i] = r == 0.0f ? 0.0f : ws.suffix[i + 1] * r;
             }
             float prefix = 1.0f;
             for (std::size_t sp = 0; sp < n; ++sp) {
-                if (valid(sp)) d += prefix * ws.suffix[sp];
+                if (valid(sp) && prefix > 0.0f && ws.suffix[sp] > 0.0f) d += prefix * ws.suffix[sp];
                 const float h = sp < s ? e[sp].pl[0] : e[sp].pe[0];
-                prefix *= e[sp].pl[k] / h;
+                const float r = e[sp].pl[k] / h;
+                prefix = r == 0.0f ? 0.0f : prefix * r;
             }
         }
         return d;

@@ -125,23 +125,42 @@ public:
     /// for 2^32 or more splats in one pass.
     template <class Lists>
     void add_pass(const Lists& lists, std::uint64_t sample) {
+        begin_pass();
+        for (const auto& list : lists) add_splats(list);
+        end_pass(sample);
+    }
+
+    /// \name A pass of splats in pieces
+    /// `add_pass` as three steps, so that an estimator can hand over its splats in chunks
+    /// while it renders and keep its lists short (the renderer's splatting loops flush a
+    /// thread's list every `splat_chunk` splats): `begin_pass`, any number of `add_splats`
+    /// (one caller at a time), `end_pass`. The pass's sums are exact, so how the splats were
+    /// chunked changes nothing.
+    /// @{
+    void begin_pass() {
         const std::size_t n = m_sum.size();
         m_pass.assign(n, exact_xyz{});
         m_pass_bad.assign(n, 0);
-        std::uint64_t splats = 0;
-        for (const auto& list : lists)
-            for (const splat& s : list) {
-                if (s.pixel >= n) throw std::out_of_range("film::add_pass: a splat outside the film");
-                if (++splats > UINT32_MAX) throw std::length_error("film::add_pass: 2^32 or more splats in one pass");
-                if (!(summable(s.value.x) && summable(s.value.y) && summable(s.value.z))) {
-                    m_pass_bad[s.pixel] = 1;
-                    continue;
-                }
-                exact_xyz& p = m_pass[s.pixel];
-                p.x += to_fixed(s.value.x);
-                p.y += to_fixed(s.value.y);
-                p.z += to_fixed(s.value.z);
+        m_pass_splats = 0;
+    }
+    template <class List>
+    void add_splats(const List& list) {
+        const std::size_t n = m_pass.size();
+        for (const splat& s : list) {
+            if (s.pixel >= n) throw std::out_of_range("film::add_pass: a splat outside the film");
+            if (++m_pass_splats > UINT32_MAX) throw std::length_error("film::add_pass: 2^32 or more splats in one pass");
+            if (!(summable(s.value.x) && summable(s.value.y) && summable(s.value.z))) {
+                m_pass_bad[s.pixel] = 1;
+                continue;
             }
+            exact_xyz& p = m_pass[s.pixel];
+            p.x += to_fixed(s.value.x);
+            p.y += to_fixed(s.value.y);
+            p.z += to_fixed(s.value.z);
+        }
+    }
+    void end_pass(std::uint64_t sample) {
+        const std::size_t n = m_sum.size();
         for (std::size_t i = 0; i < n; ++i) {
             ++m_count[i];
             const exact_xyz& t = m_pass[i];
@@ -158,6 +177,10 @@ public:
             if (m_fade) m_fade->add_fixed(i, ok ? t : exact_xyz{}, ok ? v : xyz{}, sample);
         }
     }
+    /// @}
+    /// \brief Splats a splatting loop gathers per thread before it hands them to the pass
+    /// (32 bytes each: 2 MiB per thread at most, whatever the image size).
+    static constexpr std::size_t splat_chunk = std::size_t{1} << 16;
     /// \brief Scratch bytes per pixel of `add_pass`: a pass's exact sums and a flag.
     static constexpr std::size_t pass_bytes_per_pixel = sizeof(exact_xyz) + 1;
 
@@ -392,6 +415,7 @@ private:
     std::optional<fade_parts> m_fade;
     std::vector<exact_xyz> m_pass;           ///< add_pass's scratch: this pass's sums
     std::vector<unsigned char> m_pass_bad;   ///< add_pass's scratch: a pixel took a bad splat
+    std::uint64_t m_pass_splats = 0;         ///< splats added to the current pass
 };
 
 }  // namespace iris

@@ -3,10 +3,14 @@
 // for_each_pass (render_loop.hpp) — ranks, cancellation, hooks, statistics — but each pixel's
 // sample launches one light subpath, whose splats land anywhere on the film; a pass's
 // splats are gathered per thread and added at its end with film::add_pass, which sums
-// them exactly, so no image depends on the thread count, the tiling or the rank count.
+// them exactly, so no image depends on the thread count, the tiling or the rank count. A
+// thread hands its list to the pass whenever it reaches film::splat_chunk splats (under a
+// lock; the sums are exact, so when it does changes nothing): memory per thread is bounded
+// whatever the image size.
 // Compiled for the baseline instruction set only (docs/performance.md: what a copy costs
 // in build time, the light tracer does not yet repay).
 #include <cstdint>
+#include <mutex>
 #include <type_traits>
 #include <vector>
 
@@ -32,10 +36,18 @@ void run_light_passes(const Integrator& integ, const Tracer& tracer, const optio
     const double paths = static_cast<double>(w) * static_cast<double>(rows);  // one light subpath per pixel per pass
     std::vector<std::uint64_t> row_rays(static_cast<std::size_t>(rows));
     tbb::enumerable_thread_specific<std::vector<splat>> splats;
+    std::mutex film_lock;
+    const auto flush_if_full = [&](std::vector<splat>& out) {  // a thread's list stays under film::splat_chunk
+        if (out.size() < film::splat_chunk) return;
+        const std::lock_guard<std::mutex> hold(film_lock);
+        f.add_splats(out);
+        out.clear();
+    };
     using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
     for_each_pass(opt, distribution_for, f, st, h,
                   [&](int i, float alpha, const distribution& dist, tbb::task_arena& arena, const auto& enter) {
                       for (auto& list : splats) list.clear();
+                      f.begin_pass();
                       arena.execute([&] {
                           tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
                               enter();
@@ -48,12 +60,14 @@ void run_light_passes(const Integrator& integ, const Tracer& tracer, const optio
                                       sample_stream rng(sampler, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
                                                         pixel, static_cast<std::uint64_t>(i));
                                       rays += integ.trace(tracer, dist, alpha, rng, paths, out);
+                                      flush_if_full(out);
                                   }
                                   row_rays[static_cast<std::size_t>(y)] = rays;
                               }
                           });
                       });
-                      f.add_pass(splats, static_cast<std::uint64_t>(i));
+                      for (const auto& list : splats) f.add_splats(list);
+                      f.end_pass(static_cast<std::uint64_t>(i));
                       std::uint64_t rays = 0;
                       for (auto r : row_rays) rays += r;  // fixed reduction order
                       return rays;
@@ -82,11 +96,19 @@ void run_bdpt_passes(const Integrator& integ, const Tracer& tracer, const camera
     const sampler_setup light_sampler = light_stream_setup(sampler);
     std::vector<std::uint64_t> row_rays(static_cast<std::size_t>(rows));
     tbb::enumerable_thread_specific<std::vector<splat>> splats;
+    std::mutex film_lock;
+    const auto flush_if_full = [&](std::vector<splat>& out) {  // a thread's list stays under film::splat_chunk
+        if (out.size() < film::splat_chunk) return;
+        const std::lock_guard<std::mutex> hold(film_lock);
+        f.add_splats(out);
+        out.clear();
+    };
     tbb::enumerable_thread_specific<typename Integrator::workspace> spaces;
     using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
     for_each_pass(opt, distribution_for, f, st, h,
                   [&](int i, float alpha, const distribution& dist, tbb::task_arena& arena, const auto& enter) {
                       for (auto& list : splats) list.clear();
+                      f.begin_pass();
                       arena.execute([&] {
                           tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
                               enter();
@@ -104,12 +126,14 @@ void run_bdpt_passes(const Integrator& integ, const Tracer& tracer, const camera
                                       const glm::vec3 d = cam.direction(x, y, rng.next2());
                                       rays += integ.trace(tracer, static_cast<std::uint32_t>(pixel), d, dist, alpha, rng,
                                                           lrng, ws, out);
+                                      flush_if_full(out);
                                   }
                                   row_rays[static_cast<std::size_t>(y)] = rays;
                               }
                           });
                       });
-                      f.add_pass(splats, static_cast<std::uint64_t>(i));
+                      for (const auto& list : splats) f.add_splats(list);
+                      f.end_pass(static_cast<std::uint64_t>(i));
                       std::uint64_t rays = 0;
                       for (auto r : row_rays) rays += r;  // fixed reduction order
                       return rays;
