@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # README command 1: install what is missing, build Release and run the demo:
 #   1. the XYZ / sRGB of the illuminants compiled into iris, and a plot of their SPDs;
-#   2. falling-cubes at 16 spp with the baseline `hwss` and the method `paper`, side by side;
+#   2. falling-cubes at 16 spp with the baseline `hwss` and the method `paper`, by path tracing
+#      and by bidirectional path tracing (the caustics under the cubes without fireflies);
 #   3. a quick ablation (falling-cubes, small, 16-64 spp, short reference): SSIM table + plots.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,6 +27,11 @@ if [ -x "$bin/iris-render/iris-render" ]; then
   for p in hwss paper; do
     "$bin/iris-render/iris-render" falling-cubes --preset "$p" --spp 16 -o "$out/falling-cubes-$p-16spp.exr" \
       --png "$out/falling-cubes-$p-16spp.png"
+  done
+  echo "== the same by bidirectional path tracing (--estimator bdpt) =="
+  for p in hwss paper; do
+    "$bin/iris-render/iris-render" falling-cubes --preset "$p" --spp 16 --estimator bdpt \
+      -o "$out/falling-cubes-$p-bdpt-16spp.exr" --png "$out/falling-cubes-$p-bdpt-16spp.png"
   done
 fi
 if [ -x "$bin/iris-ablate/iris-ablate" ]; then
