@@ -4,7 +4,7 @@
 //       [--threads T=all] [--seed S=1] [--nthold N=512] [--width W --height H (scene's)]
 //       [--png OUT.png] [--stats OUT.json] [--every K=0 (spp)] [--every-seconds T=0]
 //       [--half] [--max-depth D=32] [--sampler independent|sobol|zsobol]
-//       [--estimator nee-mis|bdpt|light|bsdf-only] [--strategy S,T] [--unweighted]
+//       [--estimator nee-mis|bdpt|light|bsdf-only] [--strategy S,T] [--unweighted] [--paths all|camera-only|rest]
 //       [--resume] [--checkpoint-seconds T=600] [--keep-checkpoint]
 //   mpirun -np N iris-render …   (the passes shared between N processes)
 //   iris-render --list-presets | --list-scenes
@@ -90,6 +90,7 @@ struct args {
     std::string scene, preset = "hwss", out, png, stats, isa = "auto", estimator = "nee-mis",
                 sampler = "sobol", strategy;
     bool unweighted = false;
+    std::string paths = "all";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
     double every_seconds = 0.0, checkpoint_seconds = 600.0, tev_seconds = 0.25;
     std::string tev;      ///< tev address ("" with --tev alone: the default)
@@ -173,6 +174,7 @@ iris::renderer::checkpoint_key key_of(const iris::scene_desc& s, const args& a, 
     std::string estimator = a.estimator;
     if (!a.strategy.empty()) estimator += " strategy " + a.strategy;
     if (a.unweighted) estimator += " unweighted";
+    if (a.paths != "all") estimator += " paths " + a.paths;
     return {std::string(iris::version), s.name, iris::scene::fingerprint(s), a.preset, estimator, a.sampler, a.seed,
             a.nthold, a.max_depth, a.spp, width, height};
 }
@@ -295,8 +297,14 @@ int run_render(const args& a, const ranks_session& mpi) {
         opt.bdpt.only_t = t;
     }
     opt.bdpt.mis = !a.unweighted;
-    if ((!a.strategy.empty() || a.unweighted) && a.estimator != "bdpt")
-        throw iris::app::usage_error("--strategy and --unweighted need --estimator bdpt");
+    if ((!a.strategy.empty() || a.unweighted || a.paths != "all") && a.estimator != "bdpt")
+        throw iris::app::usage_error("--strategy, --unweighted and --paths need --estimator bdpt");
+    if (a.unweighted && a.paths != "all")
+        throw iris::app::usage_error("--paths needs the weighted render (which strategies can make a path decides "
+                                     "which are camera-only), not --unweighted");
+    opt.bdpt.keep = a.paths == "camera-only" ? iris::bdpt_settings::paths::camera_only
+                    : a.paths == "rest"      ? iris::bdpt_settings::paths::rest
+                                             : iris::bdpt_settings::paths::all;
     opt.sampler = a.sampler;
     opt.rank = mpi.rank();
     opt.ranks = mpi.size();
@@ -506,6 +514,13 @@ int main(int argc, char** argv) {
     app.add_flag("--unweighted", a.unweighted,
                  "bdpt: weight each strategy over the wavelengths alone, not against the other strategies (with "
                  "--strategy: that strategy's own unbiased estimate of the paths it can make)");
+    app.add_option("--paths", a.paths,
+                   "bdpt: keep all paths, only the camera-only ones (those no strategy but a camera path that hits "
+                   "the light can make, through a non-delta vertex: a caustic seen through glass or in a mirror, "
+                   "specular-diffuse-specular) or the rest; the two images sum to the whole — to measure how much "
+                   "of the error the camera-only paths carry")
+        ->check(CLI::IsMember({"all", "camera-only", "rest"}))
+        ->capture_default_str();
     app.add_option("--sampler", a.sampler,
                    "where each pixel's random numbers come from: independent (a hash per number), sobol "
                    "(Owen-scrambled Sobol' points, per pixel) or zsobol (the same, Morton-ordered over the image: "

@@ -116,9 +116,11 @@ iris::renderer::options bdpt_options(const char* preset, int spp, std::uint64_t 
 
 // Every preset under bdpt in the flat white furnace (albedo 0.8, emission 1 everywhere): the
 // radiance is Y = 5 at every pixel, through every strategy (the walls are emitters and
-// diffuse reflectors at once, so s = 0, 1, ≥ 2 and t = 1 all carry light). Judged from
-// pass N_thold on for the presets biased before it; without dispersion the B term's
-// presets are unbiased before it too. Family: the presets, α = 0.001.
+// diffuse reflectors at once, so s = 0, 1, ≥ 2 and t = 1 all carry light). The presets
+// biased before N_thold are judged from pass N_thold = 8 on; the others are unbiased at
+// every α without dispersion and are judged with the restriction never relaxed (N_thold =
+// 2³⁰), so that the B term's bins carry every pass — along long paths on both subpaths, past
+// Russian roulette on each. Family: the presets, α = 0.001.
 TEST(Bdpt, EveryPresetKeepsTheFurnaceAtFive) {
     const auto s = iris::test::furnace(0.8);
     const auto presets = iris::renderer::presets();
@@ -127,7 +129,7 @@ TEST(Bdpt, EveryPresetKeepsTheFurnaceAtFive) {
     for (const auto& p : presets) {
         auto o = bdpt_options(p.name.c_str(), 0, 11);
         o.width = o.height = 32;
-        o.nthold = 8;
+        o.nthold = p.unbiased_before_nthold ? 1 << 30 : 8;
         const int from = p.unbiased_before_nthold ? 0 : o.nthold;
         o.spp = from + 128;
         o.path.max_depth = 200;
@@ -175,6 +177,64 @@ TEST(Bdpt, EachStrategyAloneIsUnbiasedAndTheWeightedStrategiesSumToTheWhole) {
     // the weights
     EXPECT_LE(power, 0.50) << "the test has lost its power";
     EXPECT_LE(sum_power, 0.09) << "the test has lost its power";
+}
+
+// The B term along every strategy (docs/method.md §3, "The B term under bdpt"): the same
+// paths of 4 vertices with `paper` at α ≈ 0 (N_thold = 2³⁰: F_R inside the windows, B the
+// rest of the spectrum), where B is unbiased (the cube is rough: the bins are evaluated in the
+// hero's direction, not assumed to take it). Each strategy alone, unweighted — its own bins
+// ÷ its own density — and the four weighted by the hero's balance heuristic over strategies
+// estimate the same component as `hwss`'s unweighted light tracing (3,1) of that length. A B
+// term with the wrong weight (F_R's, over the wavelengths too), the complement applied twice
+// or not at all, or a light side that misses the adjoint's factors breaks one of them.
+// Family: 5 comparisons × 4 regions × 3 channels, α = 0.001.
+TEST(Bdpt, TheBTermOfEachStrategyAloneIsUnbiasedAndTheWeightedOnesSumToTheWhole) {
+    const auto s = caustic_scene(R"("N-SF11")", 1.0);
+    const auto render = [&](const char* preset, int st_s, int st_t, bool mis, int spp, std::uint64_t seed) {
+        auto o = bdpt_options(preset, spp, seed);
+        o.nthold = 1 << 30;
+        o.bdpt.only_s = st_s;
+        o.bdpt.only_t = st_t;
+        o.bdpt.mis = mis;
+        return iris_test::grid_estimates(s, o, 2, 2);
+    };
+    const double z_max = iris_test::sidak_z(0.001, 5 * 4 * 3);
+    const auto lt = render("hwss", 3, 1, false, 16384, 200);
+    double power = 0.0;
+    for (int st_s = 0; st_s <= 3; ++st_s) {
+        const auto alone = render("paper", st_s, 4 - st_s, false, 4096, 201 + static_cast<std::uint64_t>(st_s));
+        const std::string label = "paper (" + std::to_string(st_s) + "," + std::to_string(4 - st_s) + ") unweighted vs hwss (3,1)";
+        power = std::max(power, compare(alone, lt, z_max, label));
+    }
+    std::vector<std::vector<region_estimate>> weighted;
+    for (int st_s = 0; st_s <= 3; ++st_s)
+        weighted.push_back(render("paper", st_s, 4 - st_s, true, 4096, 210 + static_cast<std::uint64_t>(st_s)));
+    const double sum_power = compare(sum_of(weighted), lt, z_max, "paper: sum of the weighted strategies vs hwss (3,1)");
+    std::printf("a relative difference of a quadrant's Y of %.2f %% is detected with 90 %% power (unweighted), %.2f %% "
+                "(the weighted sum)\n", 100.0 * power, 100.0 * sum_power);
+    EXPECT_LE(power, 0.50) << "the test has lost its power";
+    EXPECT_LE(sum_power, 0.09) << "the test has lost its power";
+}
+
+// The B term through smooth (delta) glass without dispersion, where it is unbiased: `paper`
+// at α ≈ 0 under bdpt against `hwss` under the path tracer, every path length — the caustic
+// reaches the floor through the light side's bins (their adjoint η′² at each refraction)
+// and the camera side's. 4 × 4 regions × 3 channels, α = 0.001.
+TEST(Bdpt, TheBTermAgreesWithThePathTracerThroughSmoothGlass) {
+    const auto s = caustic_scene("1.5", 0.3, 0.0);
+    iris::renderer::options opt;
+    opt.preset = "hwss";
+    opt.spp = 4096;
+    opt.seed = 25;
+    const auto pt = iris_test::grid_estimates(s, opt, 4, 4);
+    auto o = bdpt_options("paper", 2048, 26);
+    o.nthold = 1 << 30;
+    const auto bd = iris_test::grid_estimates(s, o, 4, 4);
+    const double z_max = iris_test::sidak_z(0.001, 16 * 3);
+    compare(bd, pt, z_max, "bdpt paper vs path hwss, smooth glass");
+    const double power = image_power(bd, pt, z_max);
+    std::printf("a relative difference of the image's Y of %.2f %% is detected with 90 %% power\n", 100.0 * power);
+    EXPECT_LE(power, 0.11) << "the test has lost its power";
 }
 
 // The whole bidirectional render against the path tracer (itself checked against exact
@@ -308,6 +368,66 @@ TEST(Bdpt, TheBTermIsOffAtAlphaOne) {
         EXPECT_EQ(a[i].value.x, b[i].value.x);
         EXPECT_EQ(a[i].value.y, b[i].value.y);
         EXPECT_EQ(a[i].value.z, b[i].value.z);
+    }
+}
+
+// `bdpt_settings::keep` splits the image into the camera-only paths (only s = 0 can make
+// them, through a non-delta vertex: specular–diffuse–specular) and the rest, sample by
+// sample: with the same random numbers the two sum to the whole render (up to the order of
+// additions), with F_R alone (a hero-rotated uniform distribution) and with the B term on
+// (a 500–600 nm window, B carrying the rest of the spectrum on both subpaths). Through a
+// smooth glass cube the camera-only part is not empty (the floor's caustic seen through
+// the cube); through a rough one it is exactly 0 (every vertex can be connected). Exact,
+// no statistics.
+TEST(Bdpt, CameraOnlyPathsAndTheRestSumToTheWhole) {
+    const auto split = [](auto config_tag, double roughness, const iris::test::box_distribution& dist) {
+        using Config = decltype(config_tag);
+        const auto s = caustic_scene("1.5", 0.3, roughness);
+        ASSERT_EQ(s.lambda_min, dist.lo);
+        ASSERT_EQ(s.lambda_max, dist.hi);
+        const int w = s.camera.width, h = s.camera.height;
+        const iris::camera_rays cam(s.camera, w, h);
+        const iris::light_sampler lights(s);
+        const iris::embree::intersector tracer(s);
+        const auto image = [&](iris::bdpt_settings::paths keep) {
+            iris::bdpt_settings st;
+            st.keep = keep;
+            const iris::bdpt_integrator<Config> bd(s, lights, cam, {}, st);
+            typename iris::bdpt_integrator<Config>::workspace ws;
+            const auto setup = iris::sampler_setup::make(iris::sampler_kind::independent, 5, 64);
+            const auto lsetup = iris::sampler_setup::make(iris::sampler_kind::independent, 6, 64);
+            std::vector<iris::splat> out;
+            std::vector<double> y(static_cast<std::size_t>(w * h), 0.0);
+            for (std::uint32_t i = 0; i < 16; ++i)
+                for (std::uint32_t p = 0; p < static_cast<std::uint32_t>(w * h); ++p) {
+                    const std::uint32_t x = p % static_cast<std::uint32_t>(w), yy = p / static_cast<std::uint32_t>(w);
+                    iris::sample_stream r(setup, x, yy, p, i), l(lsetup, x, yy, p, i);
+                    const glm::vec3 d = cam.direction(static_cast<int>(x), static_cast<int>(yy), r.next2());
+                    out.clear();
+                    bd.trace(tracer, p, d, dist, 0.5f, r, l, ws, out);
+                    for (const auto& sp : out) y[sp.pixel] += sp.value.y;
+                }
+            return y;
+        };
+        const auto all = image(iris::bdpt_settings::paths::all);
+        const auto camera_only = image(iris::bdpt_settings::paths::camera_only);
+        const auto rest = image(iris::bdpt_settings::paths::rest);
+        double total = 0.0, part = 0.0;
+        for (std::size_t p = 0; p < all.size(); ++p) {
+            EXPECT_NEAR(camera_only[p] + rest[p], all[p], 1e-9 * std::fabs(all[p]) + 1e-300) << "pixel " << p;
+            EXPECT_GE(camera_only[p], 0.0);
+            total += all[p];
+            part += camera_only[p];
+        }
+        std::printf("roughness %.2f, window %g-%g nm: the camera-only paths carry %.2f %% of the image's Y (16 spp)\n",
+                    roughness, static_cast<double>(dist.a), static_cast<double>(dist.b), 100.0 * part / total);
+        if (roughness == 0.0) EXPECT_GT(part, 0.0) << "no camera-only path through smooth glass";
+        else EXPECT_EQ(part, 0.0) << "a camera-only path through rough glass";
+    };
+    const iris::test::box_distribution whole{380.0f, 780.0f, 380.0f, 780.0f}, window{380.0f, 780.0f, 500.0f, 600.0f};
+    for (const double roughness : {0.0, 0.25}) {
+        split(plain_config{}, roughness, whole);
+        split(b_config{}, roughness, window);
     }
 }
 

@@ -12,6 +12,10 @@
 //   times the smoothstep falloff s(cos θ) about its axis, under a distant light ρ/π · E cos θ.
 //   Each pixel's exact value is its box-filter mean (8 × 8 sub-pixel rays); pixels whose
 //   footprint leaves the plane are left out.
+// Each oracle of the lights, the textures and the conductors runs twice: path tracing
+// (`nee-mis`) and bidirectional path tracing (`…UnderBdpt…`, the same exact values): under
+// an environment bdpt's strategies are s = 0 and 1 (a light at infinity starts no light
+// subpath), under the point and spot lights light subpaths start and join the camera.
 // Statistics as in direct_light_test.cpp (region_stats.hpp): per-pass region means are
 // independent, normal approximation, family-wise α = 0.001 (Šidák) per test.
 #include <gtest/gtest.h>
@@ -87,13 +91,14 @@ struct preset_run {
 };
 
 /// \brief Every preset, N_thold = `nthold`, `spp` judged passes (4 × as many for C = 1,
-/// whose one wavelength makes even Y noisy).
-std::vector<preset_run> every_preset(int nthold, int spp, std::uint64_t seed) {
+/// whose one wavelength makes even Y noisy), rendered by `estimator`.
+std::vector<preset_run> every_preset(int nthold, int spp, std::uint64_t seed, const std::string& estimator = "nee-mis") {
     std::vector<preset_run> v;
     for (const auto& p : iris::renderer::presets()) {
         preset_run r;
-        r.name = p.name;
+        r.name = estimator == "nee-mis" ? p.name : p.name + " (" + estimator + ")";
         r.opt.preset = p.name;
+        r.opt.estimator = estimator;
         r.opt.nthold = nthold;
         r.opt.seed = seed;
         r.from = p.unbiased_before_nthold ? 0 : nthold;
@@ -149,7 +154,8 @@ std::string environment_scene(const std::string& environment) {
 
 // The flat plane fills the image: each 12 × 12-pixel quadrant's mean XYZ must be ρ·XYZ(L).
 // Family: 2 environments × presets × 4 quadrants × 3 channels, α = 0.001.
-TEST(LightRender, EveryPresetReflectsAConstantEnvironmentExactly) {
+namespace {
+void expect_constant_environment(const std::string& estimator) {
     temp_dir dir("iris-light-render-constant");
     const double k = 0.8;  // the luminance of the environment
     write_map(dir.path / "grey.exr", 16, 8, [&](int, int) {
@@ -158,7 +164,7 @@ TEST(LightRender, EveryPresetReflectsAConstantEnvironmentExactly) {
     const std::vector<std::pair<std::string, std::string>> envs = {
         {"constant D65", R"({"spd": "D65", "luminance": 0.8})"},
         {"one-colour latlong image", R"({"image": "grey.exr"})"}};
-    const auto runs = every_preset(16, 1024, 31);
+    const auto runs = every_preset(16, 1024, 31, estimator);
     double power = 0.0;
     const double z_max = iris_test::sidak_z(0.001, envs.size() * runs.size() * 4 * 3);
     std::printf("threshold |z| <= %.2f\n", z_max);
@@ -178,12 +184,18 @@ TEST(LightRender, EveryPresetReflectsAConstantEnvironmentExactly) {
     }
     report_power(power, 0.015);
 }
+}  // namespace
+
+TEST(LightRender, EveryPresetReflectsAConstantEnvironmentExactly) { expect_constant_environment("nee-mis"); }
+// The same under bdpt: a light at infinity starts no light subpath, so its paths are s = 0 and 1.
+TEST(LightRender, EveryPresetUnderBdptReflectsAConstantEnvironmentExactly) { expect_constant_environment("bdpt"); }
 
 // A vertical plane facing +z under a latlong map of 64 × 32 texels, rows above the
 // horizon at k, below it black: L_r = ρk/2 exactly (see the top of the file). Negative
 // control: the same plane laid flat, facing up, reflects more (ρk less the blend's share).
 // Family: presets × 4 quadrants × 3 channels, α = 0.001.
-TEST(LightRender, EveryPresetReflectsHalfABrightSkyOnAVerticalPlane) {
+namespace {
+void expect_half_sky(const std::string& estimator) {
     temp_dir dir("iris-light-render-half");
     const float k = 2.0f;
     write_map(dir.path / "half.exr", 64, 32, [&](int, int y) { return y < 16 ? iris::rgb_pixel{k, k, k} : iris::rgb_pixel{}; });
@@ -197,7 +209,7 @@ TEST(LightRender, EveryPresetReflectsHalfABrightSkyOnAVerticalPlane) {
     std::vector<std::array<double, 3>> want(4);
     for (auto& w : want)
         for (std::size_t c = 0; c < 3; ++c) w[c] = rho * 0.5 * k * white[c];
-    const auto runs = every_preset(16, 1024, 32);
+    const auto runs = every_preset(16, 1024, 32, estimator);
     const double z_max = iris_test::sidak_z(0.001, runs.size() * 4 * 3);
     std::printf("threshold |z| <= %.2f\n", z_max);
     double power = 0.0;
@@ -205,6 +217,10 @@ TEST(LightRender, EveryPresetReflectsHalfABrightSkyOnAVerticalPlane) {
         power = std::max(power, check(iris_test::grid_estimates(s, run.opt, 2, 2, run.from), want, z_max, run.name));
     report_power(power, 0.02);
 }
+}  // namespace
+
+TEST(LightRender, EveryPresetReflectsHalfABrightSkyOnAVerticalPlane) { expect_half_sky("nee-mis"); }
+TEST(LightRender, EveryPresetUnderBdptReflectsHalfABrightSkyOnAVerticalPlane) { expect_half_sky("bdpt"); }
 
 namespace {
 
@@ -259,7 +275,8 @@ struct delta_case {
 // the exact box means. Zones: rings about the point under the light (point, spot: the
 // spot's rings straddle its falloff), quadrants (distant). Family: lights × presets ×
 // zones × 3 channels, α = 0.001.
-TEST(LightRender, EveryPresetMatchesTheExactIrradianceOfDeltaLights) {
+namespace {
+void expect_delta_lights(const std::string& estimator) {
     constexpr double h = 0.6, intensity = 2.0, irradiance = 3.0;
     const double cos_cone = std::cos(35.0 * std::numbers::pi / 180.0), cos_falloff = std::cos(20.0 * std::numbers::pi / 180.0);
     const auto ring = [](std::vector<double> edges) {
@@ -294,7 +311,7 @@ TEST(LightRender, EveryPresetMatchesTheExactIrradianceOfDeltaLights) {
          [&](const dvec3&) { return rho / std::numbers::pi * -dir.y; },
          [](const dvec3& p) { return (p.x < 0.0 ? 0 : 1) + (p.z < 0.0 ? 0 : 2); }, 4},
     };
-    const auto runs = every_preset(16, 128, 33);
+    const auto runs = every_preset(16, 128, 33, estimator);
     double power = 0.0;
     std::size_t family = 0;
     for (const auto& c : cases) family += runs.size() * c.zones * 3;
@@ -333,6 +350,12 @@ TEST(LightRender, EveryPresetMatchesTheExactIrradianceOfDeltaLights) {
     // values change steeply under the jitter); every other region detects under 1 %
     report_power(power, 0.15);
 }
+}  // namespace
+
+TEST(LightRender, EveryPresetMatchesTheExactIrradianceOfDeltaLights) { expect_delta_lights("nee-mis"); }
+// The same under bdpt: the point and the spot start light subpaths (their floor points are
+// joined to the camera, s = 2, t = 1, beside next-event estimation); the distant light does not.
+TEST(LightRender, EveryPresetUnderBdptMatchesTheExactIrradianceOfDeltaLights) { expect_delta_lights("bdpt"); }
 
 namespace {
 std::vector<iris_test::region_estimate> merged_quadrants(const std::vector<iris_test::region_estimate>& r) {
@@ -451,7 +474,8 @@ std::array<double, 3> textured_xyz(const glm::dvec3& w, const iris::tabulated_sp
 // texture read upside down, mirrored or in the wrong channel order fails. 40 × 40 pixels:
 // 10 × 10 per corner region, for a 2 % power on every region's Y. Family: presets × 4
 // corner regions × 3 channels, α = 0.001.
-TEST(TextureRender, EveryPresetReflectsEachTexelColourExactly) {
+namespace {
+void expect_texels(const std::string& estimator) {
     temp_dir dir("iris-texture-render");
     const std::array<iris::rgb_pixel, 4> block = {iris::rgb_pixel{0.8f, 0.2f, 0.1f}, iris::rgb_pixel{0.1f, 0.7f, 0.2f},
                                                   iris::rgb_pixel{0.2f, 0.3f, 0.9f}, iris::rgb_pixel{0.9f, 0.9f, 0.6f}};
@@ -465,7 +489,7 @@ TEST(TextureRender, EveryPresetReflectsEachTexelColourExactly) {
       "shapes": [{"type": "quad", "size": [2, 2], "material": "t"}]})";
     const auto s = iris::scene::parse_scene(json, "light_render_test", dir.path);
     ASSERT_EQ(s.textures.size(), 1u);
-    const auto runs = every_preset(16, 1024, 33);
+    const auto runs = every_preset(16, 1024, 33, estimator);
     const double z_max = iris_test::sidak_z(0.001, runs.size() * 4 * 3);
     std::printf("threshold |z| <= %.2f\n", z_max);
     // the 4 × 4 grid's corners: regions 0, 3, 12, 15 ↔ blocks 0, 1, 2, 3
@@ -484,6 +508,10 @@ TEST(TextureRender, EveryPresetReflectsEachTexelColourExactly) {
     }
     report_power(power, 0.02);
 }
+}  // namespace
+
+TEST(TextureRender, EveryPresetReflectsEachTexelColourExactly) { expect_texels("nee-mis"); }
+TEST(TextureRender, EveryPresetUnderBdptReflectsEachTexelColourExactly) { expect_texels("bdpt"); }
 
 // A uniform texture is its colour as a constant reflectance, image for image: the same
 // seed gives the same paths, and the two reflectances differ only by the rounding of the
@@ -624,7 +652,7 @@ std::array<double, 3> fresnel_xyz(const iris::scene_desc& s, const iris::materia
 /// XYZ it reflects toward a view at cos θ. Zones: four bands of view angle; family:
 /// presets × 4 zones × 3 channels, α = 0.001.
 void expect_conductor_plane(const std::string& material, const std::function<std::array<double, 3>(const iris::scene_desc&, double)>& exact,
-                            int table_steps, int spp, const std::string& label) {
+                            int table_steps, int spp, const std::string& label, const std::string& estimator = "nee-mis") {
     const auto s = iris::scene::parse_scene(R"({"camera": {"position": [0, 2.2, 2.2], "look_at": [0, 0, 0], "fov": 60, "resolution": [48, 36]},
       "materials": {"metal": )" + material + R"(},
       "environment": {"spd": "D65", "luminance": 1.0},
@@ -652,7 +680,7 @@ void expect_conductor_plane(const std::string& material, const std::function<std
         ASSERT_GE(count[z], 20u) << "zone " << z;
         for (auto& v : want[z]) v /= static_cast<double>(count[z]);
     }
-    auto runs = every_preset(16, spp, 35);
+    auto runs = every_preset(16, spp, 35, estimator);
     // the presets unbiased before N_thold are judged with the restriction never relaxed
     // (N_thold far beyond the passes), so that the B term's bins — their η and k — carry
     // every judged pass rather than the first 16 (no direction here depends on λ, so B is
@@ -686,6 +714,12 @@ TEST(ConductorRender, EveryPresetReflectsTheExactFresnelOfAGoldPlane) {
     expect_conductor_plane(R"({"type": "conductor", "metal": "Au"})",
                            [](const iris::scene_desc& s, double c) { return fresnel_xyz(s, gold_index(s), c); }, 601, 512, "gold plane");
 }
+// The same under bdpt (a light at infinity: s = 0 and 1, the delta reflection s = 0 alone).
+TEST(ConductorRender, EveryPresetUnderBdptReflectsTheExactFresnelOfAGoldPlane) {
+    expect_conductor_plane(R"({"type": "conductor", "metal": "Au"})",
+                           [](const iris::scene_desc& s, double c) { return fresnel_xyz(s, gold_index(s), c); }, 601, 512,
+                           "gold plane", "bdpt");
+}
 
 namespace {
 
@@ -700,6 +734,34 @@ double ggx_lambda(double c, double a) {
     return 0.5 * (std::sqrt(1.0 + a * a * t2) - 1.0);
 }
 
+/// \brief XYZ of the rough gold plane's directional albedo at cos θo = c times L (the test
+/// below: how it is computed and how exact it is).
+std::array<double, 3> rough_gold_xyz(const iris::scene_desc& s, double c) {
+    constexpr double alpha = 0.3;
+    static std::vector<std::array<double, 3>> phi;  // XYZ of F at |ωo·ωm| = j / 1024
+    if (phi.empty())
+        for (int j = 0; j <= 1024; ++j) phi.push_back(fresnel_xyz(s, gold_index(s), j / 1024.0));
+    const dvec3 wo(std::sqrt(1.0 - c * c), 0.0, c);
+    constexpr int nz = 512, np = 256;
+    std::array<double, 3> v{};
+    const double d_omega = (1.0 / nz) * (std::numbers::pi / np) * 2.0;
+    for (int i = 0; i < nz; ++i) {
+        const double z = (i + 0.5) / nz, r = std::sqrt(1.0 - z * z);
+        for (int j = 0; j < np; ++j) {
+            const double p = std::numbers::pi * (j + 0.5) / np;
+            const dvec3 wi(r * std::cos(p), r * std::sin(p), z);
+            const dvec3 wm = glm::normalize(wo + wi);
+            const double x = glm::dot(wo, wm) * 1024.0;
+            const auto k = std::min(static_cast<std::size_t>(x), std::size_t{1023});
+            const double f = x - static_cast<double>(k);
+            const double g = 1.0 / (1.0 + ggx_lambda(c, alpha) + ggx_lambda(z, alpha));
+            const double w = ggx_d(wm.z, alpha) * g / (4.0 * c) * d_omega;
+            for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += w * ((1.0 - f) * phi[k][ch] + f * phi[k + 1][ch]);
+        }
+    }
+    return v;
+}
+
 }  // namespace
 
 // A rough gold plane (GGX α = 0.3) under a constant environment L reflects toward a view at
@@ -710,32 +772,10 @@ double ggx_lambda(double c, double a) {
 // (measured at cos θo = 0.45…0.995). Every preset: light sampling of the environment and BSDF sampling of the visible
 // normals, MIS-weighted, and the B term's 80 Fresnels per vertex.
 TEST(ConductorRender, EveryPresetReflectsTheDirectionalAlbedoOfARoughGoldPlane) {
-    constexpr double alpha = 0.3;
-    expect_conductor_plane(
-        R"({"type": "conductor", "metal": "Au", "roughness": 0.3})",
-        [](const iris::scene_desc& s, double c) {
-            static std::vector<std::array<double, 3>> phi;  // XYZ of F at |ωo·ωm| = j / 1024
-            if (phi.empty())
-                for (int j = 0; j <= 1024; ++j) phi.push_back(fresnel_xyz(s, gold_index(s), j / 1024.0));
-            const dvec3 wo(std::sqrt(1.0 - c * c), 0.0, c);
-            constexpr int nz = 512, np = 256;
-            std::array<double, 3> v{};
-            const double d_omega = (1.0 / nz) * (std::numbers::pi / np) * 2.0;
-            for (int i = 0; i < nz; ++i) {
-                const double z = (i + 0.5) / nz, r = std::sqrt(1.0 - z * z);
-                for (int j = 0; j < np; ++j) {
-                    const double p = std::numbers::pi * (j + 0.5) / np;
-                    const dvec3 wi(r * std::cos(p), r * std::sin(p), z);
-                    const dvec3 wm = glm::normalize(wo + wi);
-                    const double x = glm::dot(wo, wm) * 1024.0;
-                    const auto k = std::min(static_cast<std::size_t>(x), std::size_t{1023});
-                    const double f = x - static_cast<double>(k);
-                    const double g = 1.0 / (1.0 + ggx_lambda(c, alpha) + ggx_lambda(z, alpha));
-                    const double w = ggx_d(wm.z, alpha) * g / (4.0 * c) * d_omega;
-                    for (std::size_t ch = 0; ch < 3; ++ch) v[ch] += w * ((1.0 - f) * phi[k][ch] + f * phi[k + 1][ch]);
-                }
-            }
-            return v;
-        },
-        61, 1024, "rough gold plane");
+    expect_conductor_plane(R"({"type": "conductor", "metal": "Au", "roughness": 0.3})", rough_gold_xyz, 61, 1024,
+                           "rough gold plane");
+}
+TEST(ConductorRender, EveryPresetUnderBdptReflectsTheDirectionalAlbedoOfARoughGoldPlane) {
+    expect_conductor_plane(R"({"type": "conductor", "metal": "Au", "roughness": 0.3})", rough_gold_xyz, 61, 1024,
+                           "rough gold plane", "bdpt");
 }

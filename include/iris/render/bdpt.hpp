@@ -33,10 +33,13 @@
 /// With `bdpt_settings::mis` false each strategy is weighted over the wavelengths alone
 /// (D = Σ_k p_s(x̄|λ_k)/p_s(x̄|λ₀)): an unbiased estimator of the paths it can make, for tests.
 ///
-/// **The B term** (PropagateUnused, α < 1) is the path tracer's, carried along the camera
-/// subpath with its two strategies (BSDF sampling and next-event estimation) and their hero
-/// weights: its expectation is the path tracer's B, and its laws hold as they do there
-/// (docs/method.md §3). The bidirectional strategies estimate F_R only.
+/// **The B term** (PropagateUnused, α < 1) is carried along both subpaths — the camera
+/// side's bins start at 1 − r_α(λ_b) as the path tracer's, the light side's at the emitted
+/// spectrum (`bidirectional_propagation`) — and every strategy adds its bins' contribution
+/// weighted by the balance heuristic over strategies with the hero alone, 1 / D_h,
+/// D_h = Σ_{s′} p_{s′}(x̄|λ₀)/p_s(x̄|λ₀): those weights sum to one over the strategies that
+/// can make x̄, so B's expectation is the path tracer's, and its laws hold (docs/method.md
+/// §3, "The B term under bdpt").
 ///
 /// **Random numbers.** The camera subpath reads the pixel's stream in the path tracer's layout
 /// (iris/render/random.hpp: slot 0 the pixel jitter, 1 the hero's u, 2 the B term's jitter,
@@ -84,6 +87,8 @@ public:
     static constexpr bool propagates = Config::bias_type::propagates;
     static constexpr bool scales_pdf = Config::bias_type::scales_pdf;
     static constexpr std::size_t bins = Bins;
+    /// \brief The B term of one sample (iris/render/propagation.hpp), or nothing.
+    using propagation_type = std::conditional_t<propagates, bidirectional_propagation<Bins>, no_propagation>;
 
     /// \brief A light subpath vertex (y₀ is the point on the light).
     struct light_vertex {
@@ -111,6 +116,7 @@ public:
         std::vector<camera_vertex> camera;
         std::vector<mis_entry> path;
         std::vector<float> suffix;
+        std::vector<typename propagation_type::vertex_throughput> light_bins;  ///< the B term's t_b at each y_i
         bool light_on_surface = false;  ///< y₀ is on an area light (s′ = 0 can make its paths)
     };
 
@@ -138,8 +144,9 @@ public:
         const double inv_y = 1.0 / static_cast<double>(cie::y_integral);
         const splat_weights sc(dist, wl, inv_y);
 
-        rays += light_subpath(tracer, wl, lrng, ws);
-        rays += light_to_camera(tracer, wl, sc, ws, out);
+        propagation_type lterm = bterm;  // the light side's bins (the same jitter and windows)
+        rays += light_subpath(tracer, wl, lrng, ws, lterm);
+        rays += light_to_camera(tracer, wl, sc, ws, lterm, out);
 
         // the camera subpath, with every strategy ending at each of its vertices
         xyz own;
@@ -152,7 +159,7 @@ public:
         }
         sampled_spectrum<C> beta(1.0f);
         sampled_spectrum<C> pdf_dir(m_camera.pdf_direction(dir) * m_inv_paths);  // p(ω) of the last sampling, solid angle
-        float eta_scale = 1.0f, prev_pdf0 = 0.0f;
+        float eta_scale = 1.0f;
         bool prev_delta = true;
         glm::vec3 origin = m_camera.origin();
         for (int depth = 0;; ++depth) {
@@ -160,7 +167,7 @@ public:
             const auto hit = tracer.intersect(origin, dir, std::numeric_limits<float>::infinity());
             ++rays;
             if (!hit) {
-                if (m_lights.has_environment()) escaped(dir, wl, beta, pdf_dir, prev_delta, prev_pdf0, sc, ws, bterm, own);
+                if (m_lights.has_environment()) escaped(dir, wl, beta, pdf_dir, prev_delta, sc, ws, bterm, own);
                 break;
             }
             const shape_desc& shape = m_scene.shapes[hit->shape];
@@ -180,7 +187,7 @@ public:
                 z.pdf_fwd = pdf_dir * (cos_in / d2);
                 ws.camera.push_back(z);
             }
-            if (shape.emitter) hit_emitter(*shape.emitter, vx, wl, beta, prev_delta, prev_pdf0, sc, ws, bterm, own);
+            if (shape.emitter) hit_emitter(*shape.emitter, vx, wl, beta, sc, ws, bterm, own);
             if (depth >= m_settings.max_depth) break;
             const glm::vec3 lo = vx.to_local(vx.wo);
             glm::vec3 wi;
@@ -192,7 +199,7 @@ public:
                 ws.camera.back().delta = B::delta;
                 if constexpr (!B::delta) {
                     rays += next_event(tracer, bxdf, vx, lo, wl, hero, beta, sc, ws, bterm, rng, own);
-                    rays += connect(tracer, bxdf, vx, lo, wl, hero, beta, sc, ws, own);
+                    rays += connect(tracer, bxdf, vx, lo, wl, hero, beta, sc, ws, bterm, lterm, own);
                 }
                 const float u_lobe = rng.next();
                 const auto s = bxdf.template sample<C>(lo, wl, u_lobe, rng.next2(), hero);
@@ -208,7 +215,6 @@ public:
                 beta *= s->f_cos / s->pdf[0];
                 pdf_dir = s->pdf;
                 prev_delta = s->delta;
-                prev_pdf0 = s->pdf[0];
                 if (s->kind == lobe::transmission) eta_scale *= s->eta * s->eta;
                 return true;
             });
@@ -232,17 +238,28 @@ public:
     }
 
 private:
-    using propagation_type = std::conditional_t<propagates, propagation<Bins>, no_propagation>;
     using splat_weights = detail::splat_weights<Config, C>;
     propagation_type make_propagation() const noexcept {
         if constexpr (propagates) return propagation_type(m_bins);
         else return {};
     }
 
-    /// \brief Is strategy (s, t) kept (`bdpt_settings::only_s`, `only_t`)?
+    /// \brief Is strategy (s, t) kept (`bdpt_settings::only_s`, `only_t`; `keep`: only the
+    /// camera's s = 0 makes camera-only paths, so its other strategies are kept with `rest`)?
     bool kept(std::size_t s, std::size_t t) const noexcept {
         return (m_strategies.only_s < 0 || static_cast<std::size_t>(m_strategies.only_s) == s) &&
-               (m_strategies.only_t < 0 || static_cast<std::size_t>(m_strategies.only_t) == t);
+               (m_strategies.only_t < 0 || static_cast<std::size_t>(m_strategies.only_t) == t) &&
+               (s == 0 || m_strategies.keep != bdpt_settings::paths::camera_only);
+    }
+    /// \brief Is an s = 0 path kept (`bdpt_settings::keep`)? It is camera-only if no other
+    /// strategy can make it (`alone`) and a vertex between the camera and the light is not
+    /// delta (`first` … `end` of ws.camera).
+    bool kept_path(const workspace& ws, bool alone, std::size_t first, std::size_t end) const noexcept {
+        if (m_strategies.keep == bdpt_settings::paths::all) return true;
+        bool camera_only = false;
+        if (alone)
+            for (std::size_t i = first; i < end; ++i) camera_only |= !ws.camera[i].delta;
+        return camera_only == (m_strategies.keep == bdpt_settings::paths::camera_only);
     }
 
     /// \brief A solid-angle density at `from` converted to area density at point p (unit
@@ -255,10 +272,16 @@ private:
         return pdf * (std::fabs(glm::dot(n, d)) / (d2 * std::sqrt(d2)));
     }
 
-    /// \brief The weight's denominator D = Σ_k Σ_{s′} p_{s′}(x̄|λ_k)/p_s(x̄|λ₀) of a path of
-    /// ws.path (x₀ on the light … x_{n−1} the camera) made by strategy s. `hit` says a ray
-    /// can hit x₀ (s′ = 0), `finite` that light subpaths start at x₀'s light (s′ ≥ 2).
-    float denominator(workspace& ws, std::size_t s, bool hit, bool finite) const noexcept {
+    /// \brief The weights' denominators of a path of ws.path (x₀ on the light … x_{n−1} the
+    /// camera) made by strategy s: F_R's D = Σ_k Σ_{s′} p_{s′}(x̄|λ_k)/p_s(x̄|λ₀), and the
+    /// B term's, the hero's alone: D_h = Σ_{s′} p_{s′}(x̄|λ₀)/p_s(x̄|λ₀) (the k = 0 terms).
+    /// `hit` says a ray can hit x₀ (s′ = 0), `finite` that light subpaths start at x₀'s light
+    /// (s′ ≥ 2).
+    struct denominators {
+        float all = 0.0f, hero = 0.0f;
+        bool alone = true;  ///< no other strategy can make x̄ (at any wavelength)
+    };
+    denominators denominator(workspace& ws, std::size_t s, bool hit, bool finite) const noexcept {
         const auto& e = ws.path;
         const std::size_t n = e.size();
         const auto valid = [&](std::size_t sp) {
@@ -269,6 +292,7 @@ private:
             return !e[sp - 1].delta && !e[sp].delta;
         };
         ws.suffix.resize(n + 1);
+        denominators out;
         float d = 0.0f;
         for (std::size_t k = 0; k < C; ++k) {
             // suffix[sp] = Π_{i ≥ sp} p←_i(λ_k)/h_i, prefix = Π_{i < sp} p→_i(λ_k)/h_i
@@ -282,13 +306,18 @@ private:
             }
             float prefix = 1.0f;
             for (std::size_t sp = 0; sp < n; ++sp) {
-                if (valid(sp) && prefix > 0.0f && ws.suffix[sp] > 0.0f) d += prefix * ws.suffix[sp];
+                if (valid(sp) && prefix > 0.0f && ws.suffix[sp] > 0.0f) {
+                    d += prefix * ws.suffix[sp];
+                    out.alone &= sp == s;
+                }
                 const float h = sp < s ? e[sp].pl[0] : e[sp].pe[0];
                 const float r = e[sp].pl[k] / h;
                 prefix = r == 0.0f ? 0.0f : prefix * r;
             }
+            if (k == 0) out.hero = d;
         }
-        return d;
+        out.all = d;
+        return out;
     }
 
     /// \brief ws.path ← the light vertices y₀ … y_{s−1} (p→ their forward densities, p← their reverse).
@@ -303,12 +332,14 @@ private:
 
     /// \brief The light subpath: y₀ on a light chosen by power (none for a light at
     /// infinity: its paths are the camera's strategies'), then the hero's BSDF samples with
-    /// the adjoint BSDF, as the light tracer's (iris/render/light_tracer.hpp).
+    /// the adjoint BSDF, as the light tracer's (iris/render/light_tracer.hpp); the B term's
+    /// bins along it in `lterm`, their throughput at each vertex in ws.light_bins.
     template <Intersector Tracer>
     std::uint32_t light_subpath(const Tracer& tracer, const sampled_wavelengths<C>& wl, sample_stream& rng,
-                                workspace& ws) const {
+                                workspace& ws, propagation_type& lterm) const {
         std::uint32_t rays = 0;
         ws.light.clear();
+        ws.light_bins.clear();
         const glm::vec2 u_pos = rng.next2();
         rng.start_bounce(0);
         const glm::vec2 u_dir = rng.next2();
@@ -324,13 +355,18 @@ private:
             y0.pdf_fwd = sampled_spectrum<C>(ls->pdf_pos);
             y0.beta = m_hero.emitted(ls->le, wl) / ls->pdf_pos;
             ws.light.push_back(y0);
+            lterm.start_light_subpath(ls->le, 1.0f / ls->pdf_pos);
+            if constexpr (propagates) ws.light_bins.push_back(lterm.throughput());
         }
         const float cos_l = ws.light_on_surface ? std::fabs(glm::dot(ls->normal, ls->dir)) : 1.0f;
         sampled_spectrum<C> beta = ws.light[0].beta * (cos_l / ls->pdf_dir);
+        lterm.weigh(cos_l / ls->pdf_dir);
         // roulette looks at the throughput relative to the emitted one (β holds Φ/p_select,
-        // not a number near 1 — on its own it would never end a light subpath)
-        const float beta_start = beta.max_value();
-        const float roulette_scale = beta_start > 0.0f && std::isfinite(beta_start) ? 1.0f / beta_start : 1.0f;
+        // not a number near 1 — on its own it would never end a light subpath), and at the
+        // B term's bins relative to theirs (0 when it is off)
+        const auto relative = [](float start) { return start > 0.0f && std::isfinite(start) ? 1.0f / start : 1.0f; };
+        const float roulette_scale = relative(beta.max_value());
+        const float bins_scale = relative(lterm.roulette_max(0.0f));
         sampled_spectrum<C> pdf_dir(ls->pdf_dir);
         glm::vec3 origin = offset_ray_origin(ls->origin, ls->normal, ls->dir);
         glm::vec3 dir = ls->dir;
@@ -353,6 +389,7 @@ private:
                 y.pdf_fwd = to_area(pdf_dir, vx.sp.p, vx.ng, ws.light.back().si.sp.p);
                 y.material = shape.material;
                 ws.light.push_back(y);
+                if constexpr (propagates) ws.light_bins.push_back(lterm.throughput());
             }
             if (depth + 1 >= m_settings.max_depth) break;  // y_{max_depth} is the last a strategy uses
             const bool scattered = visit_bxdf(m_scene.materials[shape.material], [&](const auto& bxdf) {
@@ -360,6 +397,7 @@ private:
                 emission_ref albedo;
                 const sampled_spectra<C> hero = m_hero.at_vertex(bxdf, m_scene, shape.material, vx.uv, wl, albedo);
                 ws.light.back().delta = B::delta;
+                lterm.enter(bxdf, shape.material, albedo);
                 const glm::vec2 u = rng.next2();
                 const float u_lobe = rng.next();
                 const auto s = bxdf.template sample<C>(lo, wl, u_lobe, u, hero);
@@ -374,6 +412,7 @@ private:
                             f[k] *= e * e;
                         }
                 beta *= f * (shading / s->pdf[0]);
+                lterm.follow_adjoint(bxdf, lo, *s, shading);
                 const std::size_t i = ws.light.size() - 1;
                 const sampled_spectrum<C> rev = B::delta ? s->pdf : bxdf.template pdf<C>(s->wi, lo, hero);
                 ws.light[i - 1].pdf_rev = to_area(rev, ws.light[i - 1].si.sp.p, ws.light[i - 1].si.ng, vx.sp.p);
@@ -382,23 +421,31 @@ private:
             });
             if (!scattered) break;
             if (depth + 1 >= m_settings.rr_start_depth) {
-                const float m = beta.max_value() * roulette_scale;
+                const float mb = lterm.roulette_max(0.0f) * bins_scale, mf = beta.max_value() * roulette_scale;
+                const float m = mb > mf ? mb : mf;  // (a NaN in the bins is ignored)
                 const float survive = m < 1.0f ? m : 1.0f;
                 if (!(survive > 0.0f) || rng.next() >= survive) break;
-                if (survive < 1.0f) beta /= survive;
+                if (survive < 1.0f) {
+                    beta /= survive;
+                    lterm.survive(survive);
+                }
             }
             origin = offset_ray_origin(vx.sp, vx.ng, dir);
         }
         return rays;
     }
 
-    /// \brief What a non-delta light vertex y sends toward unit w (world): the adjoint
-    /// f*(ωo → w)·|w·n_g| with the shading correction (as the light tracer's), p→ of w and
-    /// p← of ωo given w (solid angle at y). Zero for a delta material.
+    /// \brief What a non-delta light vertex y (index i) sends toward unit w (world): the
+    /// adjoint f*(ωo → w)·|w·n_g| with the shading correction (as the light tracer's), p→ of w
+    /// and p← of ωo given w (solid angle at y), and the B term's bins in `yterm` (`bins`:
+    /// they carry something). Zero for a delta material.
     struct light_eval {
         sampled_spectrum<C> f, pdf_fwd, pdf_rev;
+        bool bins = false;
     };
-    light_eval eval_light_vertex(const light_vertex& y, const glm::vec3& w, const sampled_wavelengths<C>& wl) const noexcept {
+    light_eval eval_light_vertex(const workspace& ws, std::size_t i, const glm::vec3& w, const sampled_wavelengths<C>& wl,
+                                 propagation_type& yterm) const noexcept {
+        const light_vertex& y = ws.light[i];
         return visit_bxdf(m_scene.materials[y.material], [&](const auto& bxdf) -> light_eval {
             using B = std::remove_cvref_t<decltype(bxdf)>;
             if constexpr (B::delta) {
@@ -413,6 +460,12 @@ private:
                 out.f = v.f_cos * (std::fabs(glm::dot(w, y.si.ng)) / wo_ng);
                 out.pdf_fwd = bxdf.template pdf<C>(lo, lw, hero);
                 out.pdf_rev = v.pdf;
+                if constexpr (propagates) {
+                    yterm.enter(bxdf, y.material, albedo);
+                    yterm.prepare_light(bxdf, lw, lo);  // the bins' f(w, ωo)·|ωo·n_s|
+                    out.bins = yterm.template receives_light<B>();
+                    if (out.bins) yterm.template light_vertex<B>(ws.light_bins[i], std::fabs(glm::dot(w, y.si.ng)) / wo_ng);
+                }
                 return out;
             }
         });
@@ -421,7 +474,7 @@ private:
     /// \brief t = 1: each non-delta light vertex y_{s−1} (s ≥ 2) joined to the pinhole and splatted.
     template <Intersector Tracer, class Out>
     std::uint32_t light_to_camera(const Tracer& tracer, const sampled_wavelengths<C>& wl, const splat_weights& sc,
-                                  workspace& ws, Out& out) const {
+                                  workspace& ws, propagation_type& yterm, Out& out) const {
         const double k = sc.k * static_cast<double>(m_inv_paths);
         std::uint32_t rays = 0;
         for (std::size_t s = 2; s <= ws.light.size(); ++s) {
@@ -430,8 +483,8 @@ private:
             if (y.delta) continue;
             const auto link = detail::to_camera(m_camera, y.si.sp, y.si.ng);
             if (!link) continue;
-            const light_eval ye = eval_light_vertex(y, link->w, wl);
-            if (ye.f.is_zero()) continue;
+            const light_eval ye = eval_light_vertex(ws, s - 1, link->w, wl, yterm);
+            if (ye.f.is_zero() && !ye.bins) continue;
             ++rays;
             if (tracer.occluded(link->shadow.origin, link->shadow.direction, link->shadow.t_max)) continue;
             push_light_vertices(ws, s);
@@ -439,27 +492,23 @@ private:
             ws.path[s - 1].pe = sampled_spectrum<C>(link->g * m_inv_paths * std::fabs(glm::dot(link->w, y.si.ng)));
             ws.path[s - 2].pe = to_area(ye.pdf_rev, ws.light[s - 2].si.sp.p, ws.light[s - 2].si.ng, y.si.sp.p);
             ws.path.push_back({sampled_spectrum<C>(0.0f), sampled_spectrum<C>(1.0f), false});  // z₀
-            const float d = denominator(ws, s, ws.light_on_surface, true);
-            const sampled_spectrum<C> v = y.beta * ye.f * (link->g / d);
-            const xyz x = sc.hero(v);
+            const denominators d = denominator(ws, s, ws.light_on_surface, true);
+            xyz x = sc.hero(y.beta * ye.f * (link->g / d.all));
+            if (ye.bins) yterm.connect_camera(link->g / d.hero, x);
             out.push_back(splat{link->pixel, {x.x * k, x.y * k, x.z * k}});
         }
         return rays;
     }
 
     /// \brief s = 0 at an area light: the camera subpath's last vertex z_{t−1} (= vx) is on emitter e.
-    template <class Prop>
     void hit_emitter(std::uint32_t e, const surface_interaction& vx, const sampled_wavelengths<C>& wl,
-                     const sampled_spectrum<C>& beta, bool prev_delta, float prev_pdf0, const splat_weights& sc,
-                     workspace& ws, Prop& bterm, xyz& own) const {
+                     const sampled_spectrum<C>& beta, const splat_weights& sc, workspace& ws, propagation_type& bterm,
+                     xyz& own) const {
         const emitter_desc& em = m_scene.emitters[e];
         const float cos_l = glm::dot(vx.ng, vx.wo);
         if (!(em.two_sided ? cos_l != 0.0f : cos_l > 0.0f)) return;
         const emission_ref le{e, 1, {1.0f, 0.0f, 0.0f}};
         const float pa = m_lights.pdf_area(vx.shape, vx.prim);
-        // the B term: the path tracer's weight against next-event estimation
-        const float pl_solid = pa * vx.t * vx.t / std::fabs(cos_l);
-        bterm.emission(le, prev_delta ? 1.0f : balance_heuristic(prev_pdf0, pl_solid));
         const std::size_t t = ws.camera.size();
         if (!kept(0, t)) return;
         ws.path.clear();
@@ -471,33 +520,35 @@ private:
             const float pe = (em.two_sided ? 0.5f : 1.0f) * std::fabs(cos_l) / pi;
             ws.path[1].pl = to_area(sampled_spectrum<C>(pe), z.p, z.ng, vx.sp.p);
         }
-        const float d = denominator(ws, 0, true, true);
-        add(own, sc, beta * m_hero.emitted(le, wl) / d);
+        const denominators d = denominator(ws, 0, true, true);
+        if (!kept_path(ws, d.alone, 1, t - 1)) return;
+        add(own, sc, beta * m_hero.emitted(le, wl) / d.all);
+        bterm.emission(le, 1.0f / d.hero);
     }
 
     /// \brief s = 0 at the environment: the camera ray escaped along `dir`.
-    template <class Prop>
     void escaped(const glm::vec3& dir, const sampled_wavelengths<C>& wl, const sampled_spectrum<C>& beta,
-                 const sampled_spectrum<C>& pdf_dir, bool prev_delta, float prev_pdf0, const splat_weights& sc,
-                 workspace& ws, Prop& bterm, xyz& own) const {
+                 const sampled_spectrum<C>& pdf_dir, bool prev_delta, const splat_weights& sc, workspace& ws,
+                 propagation_type& bterm, xyz& own) const {
         const emission_ref le = m_lights.environment_emission(dir);
         const float pl = prev_delta ? 0.0f : m_lights.pdf_environment(dir);
-        bterm.emission(le, pl > 0.0f ? balance_heuristic(prev_pdf0, pl) : 1.0f);
         const std::size_t t = ws.camera.size();
         if (!kept(0, t + 1)) return;
         ws.path.clear();
         ws.path.push_back({sampled_spectrum<C>(pl), pdf_dir, false});  // the environment, in solid angle
         push_camera_vertices(ws, t);
-        const float d = denominator(ws, 0, true, false);
-        add(own, sc, beta * m_hero.emitted(le, wl) / d);
+        const denominators d = denominator(ws, 0, true, false);
+        if (!kept_path(ws, d.alone, 1, t)) return;
+        add(own, sc, beta * m_hero.emitted(le, wl) / d.all);
+        bterm.emission(le, 1.0f / d.hero);
     }
 
     /// \brief s = 1: next-event estimation from the camera subpath's last vertex vx.
-    template <Intersector Tracer, class B, class Prop>
+    template <Intersector Tracer, class B>
     std::uint32_t next_event(const Tracer& tracer, const B& bxdf, const surface_interaction& vx, const glm::vec3& lo,
                              const sampled_wavelengths<C>& wl, const sampled_spectra<C>& hero,
-                             const sampled_spectrum<C>& beta, const splat_weights& sc, workspace& ws, Prop& bterm,
-                             sample_stream& rng, xyz& own) const {
+                             const sampled_spectrum<C>& beta, const splat_weights& sc, workspace& ws,
+                             propagation_type& bterm, sample_stream& rng, xyz& own) const {
         if (m_lights.empty()) return 0;
         const glm::vec2 u_point = rng.next2();
         const float u_choice = rng.next();
@@ -510,9 +561,8 @@ private:
         bterm.prepare_light(bxdf, lo, li);
         if (fb.f_cos.is_zero() && !bterm.template receives_light<B>()) return 0;
         if (tracer.occluded(ls->shadow.origin, ls->shadow.direction, ls->shadow.t_max)) return 1;
-        bterm.template light<B>(ls->le, balance_heuristic(ls->pdf, fb.pdf[0]), ls->pdf);
         const std::size_t t = ws.camera.size();
-        if (fb.f_cos.is_zero() || !kept(1, t)) return 1;
+        if (!kept(1, t)) return 1;
         ws.path.clear();
         // x₀ on the light: p→ its light-sampling density, p← the BSDF's (area for a finite light)
         if (ls->infinite) {
@@ -531,8 +581,9 @@ private:
                 ws.path[2].pl = to_area(bxdf.template pdf<C>(li, lo, hero), z.p, z.ng, vx.sp.p);
             }
         }
-        const float d = denominator(ws, 1, !ls->delta, !ls->infinite);
-        add(own, sc, beta * fb.f_cos * m_hero.emitted(ls->le, wl) / (ls->pdf * d));
+        const denominators d = denominator(ws, 1, !ls->delta, !ls->infinite);
+        if (!fb.f_cos.is_zero()) add(own, sc, beta * fb.f_cos * m_hero.emitted(ls->le, wl) / (ls->pdf * d.all));
+        bterm.template light<B>(ls->le, 1.0f / d.hero, ls->pdf);
         return 1;
     }
 
@@ -541,7 +592,8 @@ private:
     template <Intersector Tracer, class B>
     std::uint32_t connect(const Tracer& tracer, const B& bxdf, const surface_interaction& vx, const glm::vec3& lo,
                           const sampled_wavelengths<C>& wl, const sampled_spectra<C>& hero,
-                          const sampled_spectrum<C>& beta, const splat_weights& sc, workspace& ws, xyz& own) const {
+                          const sampled_spectrum<C>& beta, const splat_weights& sc, workspace& ws,
+                          propagation_type& bterm, propagation_type& yterm, xyz& own) const {
         std::uint32_t rays = 0;
         const std::size_t t = ws.camera.size();
         // path depth s + t − 2 ≤ max_depth
@@ -556,9 +608,12 @@ private:
             w /= std::sqrt(d2);
             const glm::vec3 lw = vx.to_local(w);
             const bsdf_value<C> fz = bxdf.template eval<C>(lo, lw, hero);
-            if (fz.f_cos.is_zero()) continue;
-            const light_eval ye = eval_light_vertex(y, -w, wl);
-            if (ye.f.is_zero()) continue;
+            bterm.prepare_light(bxdf, lo, lw);  // the bins' f(ωo, w)·|w·n_s|
+            const bool bins_z = bterm.template receives_light<B>();
+            if (fz.f_cos.is_zero() && !bins_z) continue;
+            const light_eval ye = eval_light_vertex(ws, s - 1, -w, wl, yterm);
+            const bool hero_on = !fz.f_cos.is_zero() && !ye.f.is_zero(), bins_on = bins_z && ye.bins;
+            if (!hero_on && !bins_on) continue;
             ++rays;
             const shadow_segment sh = shadow_ray_between(vx.sp, vx.ng, y.si.sp, y.si.ng);
             if (tracer.occluded(sh.origin, sh.direction, sh.t_max)) continue;
@@ -571,8 +626,9 @@ private:
                 const camera_vertex& z = ws.camera[t - 2];
                 ws.path[s + 1].pl = to_area(bxdf.template pdf<C>(lw, lo, hero), z.p, z.ng, vx.sp.p);
             }
-            const float d = denominator(ws, s, ws.light_on_surface, true);
-            add(own, sc, beta * fz.f_cos * ye.f * y.beta / (d2 * d));
+            const denominators d = denominator(ws, s, ws.light_on_surface, true);
+            if (hero_on) add(own, sc, beta * fz.f_cos * ye.f * y.beta / (d2 * d.all));
+            if (bins_on) bterm.template connect_vertex<B>(yterm, 1.0f / (d2 * d.hero), own);
         }
         return rays;
     }

@@ -72,9 +72,15 @@ struct path_settings {
 /// \brief Which strategies a bidirectional render keeps, and how it weights them
 /// (`bdpt_integrator`, iris/render/bdpt.hpp).
 struct bdpt_settings {
+    /// \brief Which paths a render keeps: all, or (for measurements) the paths no strategy
+    /// but the camera's unidirectional s = 0 can make through a non-delta vertex — a light
+    /// found by BSDF sampling after a specular–non-delta–specular chain (a caustic seen
+    /// through glass) — or all the others. The two images sum to the whole.
+    enum class paths { all, camera_only, rest };
     bool mis = true;  ///< false: each strategy weighted over the wavelengths alone (docs/method.md §3)
     int only_s = -1;  ///< ≥ 0: only strategies with this many light vertices
     int only_t = -1;  ///< ≥ 0: only strategies with this many camera vertices
+    paths keep = paths::all;
 };
 
 namespace detail {

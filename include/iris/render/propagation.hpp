@@ -14,11 +14,16 @@
 /// | `roulette_max`, `survive(q)` | Russian roulette | B's largest weight counts; t_b ← t_b / q |
 /// | `add_xyz(v)` | the path ends | v += Δλ Σ_b L_b cmf(λ_b) |
 ///
+/// Light tracing adds `start_emitted`, `follow_adjoint`, `weigh`, `connect`; bidirectional
+/// path tracing uses `bidirectional_propagation` (below), which joins two subpaths' bins.
+///
 /// B = Σ_b (1 − r_α(λ_b)) f_h(x̄, λ_b) Δλ / p(x̄ | λ₀), λ_b = λmin + (b + u)Δλ with one
 /// jitter u per sample shared by all bins (each λ_b is uniform in its bin). Its spectra come
 /// from the lattice tables of iris/render/bins.hpp; every step is one pass over the bins
 /// with no temporary spectrum. Bins inside the windows start at 0 and stay 0, so the sum
-/// needs no weight at the end and roulette sees only what B carries.
+/// needs no weight at the end and roulette sees only what B carries (except on a
+/// bidirectional light subpath, whose bins start at Le and take the complement at the end:
+/// `bidirectional_propagation`).
 
 #include <array>
 #include <bit>
@@ -63,6 +68,14 @@ struct no_propagation {
     template <class B>
     void connect(float, xyz&) noexcept {}
     void connect_emitter(float, xyz&) noexcept {}
+    struct vertex_throughput {};
+    void start_light_subpath(const emission_ref&, float) noexcept {}
+    vertex_throughput throughput() const noexcept { return {}; }
+    template <class B>
+    void light_vertex(const vertex_throughput&, float) noexcept {}
+    template <class B>
+    void connect_vertex(const no_propagation&, float, xyz&) noexcept {}
+    void connect_camera(float, xyz&) noexcept {}
 };
 
 /// \brief The B term of one path over `Bins` bins, reading the tables of one render.
@@ -225,7 +238,7 @@ public:
         sum_xyz(m_lb.values().data(), v);
     }
 
-private:
+protected:
     /// \brief v += Δλ Σ_b w_b cmf(λ_b), in the fixed order `add_xyz` describes.
     void sum_xyz(const float* w_b, xyz& v) const noexcept {
         std::array<float, Bins> sx_, sy_, sz_;  // scratch, used only off the lattice
@@ -376,6 +389,78 @@ private:
     std::array<float, Bins> m_scratch;  ///< for emitters off the lattice (binned_spectrum::at)
     std::array<float, Bins> m_mix;      ///< an environment texel's spectrum at the bins
     mutable std::array<float, Bins> m_eta_scratch, m_eta2_scratch, m_inv_eta2_scratch, m_k_scratch;
+};
+
+/// \brief The B term of one bidirectional sample (iris/render/bdpt.hpp; docs/method.md §3,
+/// "The B term under bdpt"): `propagation`'s steps, and those that join a light subpath's
+/// vertex to a camera subpath's or to the camera.
+template <std::size_t Bins>
+class bidirectional_propagation : public propagation<Bins> {
+public:
+    using propagation<Bins>::propagation;
+
+    /// \name Bidirectional paths
+    /// Two instances per sample: the camera subpath's (started by `start`, as the path
+    /// tracer's: its t_b carries 1 − r_α(λ_b)), and a copy of it for the light subpath, whose
+    /// t_b starts at the emitted spectrum alone — the complement is applied once per path:
+    /// by the camera side's throughput, or at a connection to the camera. The light side's
+    /// t_b at each vertex is kept (`throughput`); a connection of light vertex y to camera
+    /// vertex z puts the light instance at y (`enter`, `prepare_light` toward z, then
+    /// `light_vertex`) and the camera instance at z (`prepare_light` toward y, then
+    /// `connect_vertex`).
+    /// @{
+    using vertex_throughput = sampled_spectrum<Bins>;
+    /// \brief The light side leaves an emitter: the complement 1 − r_α is set aside,
+    /// t_b ← Le(λ_b) · k.
+    void start_light_subpath(const emission_ref& le, float k) noexcept {
+        if (!this->m_on) return;
+        this->m_c = this->m_tb;
+        const typename propagation<Bins>::view v = this->emitted(le, k);
+        for (std::size_t b = 0; b < Bins; ++b) this->m_tb[b] = v[b] * k;
+        this->m_tb_max = 0.0f;
+        for (std::size_t b = 0; b < Bins; ++b) this->m_tb_max = this->m_tb[b] > this->m_tb_max ? this->m_tb[b] : this->m_tb_max;
+    }
+    /// \brief The throughput arriving at the current vertex (kept per light vertex).
+    const vertex_throughput& throughput() const noexcept { return this->m_tb; }
+    /// \brief At light vertex y (after `enter` and `prepare_light(bxdf, ω toward z, ωo)`):
+    /// g_b ← t_b(y) · f_b · k — the adjoint BSDF toward z with k its shading correction.
+    template <class B>
+    void light_vertex(const vertex_throughput& t, float k) noexcept {
+        if (!this->m_on) return;
+        if constexpr (separable_bxdf<B>) {
+            const float g = this->m_cos * k;
+            for (std::size_t b = 0; b < Bins; ++b) this->m_g[b] = t[b] * this->m_refl[b] * g;
+        } else {
+            for (std::size_t b = 0; b < Bins; ++b) this->m_g[b] = t[b] * this->m_f[b] * k;
+        }
+    }
+    /// \brief At camera vertex z (after `prepare_light(bxdf, ωo, ω toward y)`), joined to the
+    /// light instance `y` at its vertex: v += Δλ Σ_b t_b f_b g_b k cmf(λ_b), k the geometry
+    /// term and the weight. Not yet divided by ∫ȳ.
+    template <class B>
+    void connect_vertex(const bidirectional_propagation& y, float k, xyz& v) noexcept {
+        if (!this->m_on) return;
+        if constexpr (separable_bxdf<B>) {
+            const float g = this->m_cos * k;
+            for (std::size_t b = 0; b < Bins; ++b) this->m_mix[b] = this->m_tb[b] * this->m_refl[b] * y.m_g[b] * g;
+        } else {
+            for (std::size_t b = 0; b < Bins; ++b) this->m_mix[b] = this->m_tb[b] * this->m_f[b] * y.m_g[b] * k;
+        }
+        this->sum_xyz(this->m_mix.data(), v);
+    }
+    /// \brief The light instance's vertex (after `light_vertex`) joined to the camera:
+    /// v += Δλ Σ_b (1 − r_α(λ_b)) g_b k cmf(λ_b), k the camera's factor and the weight.
+    void connect_camera(float k, xyz& v) noexcept {
+        if (!this->m_on) return;
+        for (std::size_t b = 0; b < Bins; ++b) this->m_mix[b] = this->m_c[b] * this->m_g[b] * k;
+        this->sum_xyz(this->m_mix.data(), v);
+    }
+    /// @}
+
+private:
+    /// the light side's complement 1 − r_α(λ_b), set aside, and a light vertex's t_b f_b
+    /// (with its shading correction) toward the vertex it is joined to
+    sampled_spectrum<Bins> m_c, m_g;
 };
 
 }  // namespace iris

@@ -99,8 +99,14 @@ void validate(const options& o) {
     if (o.estimator != "nee-mis" && o.estimator != "bsdf-only" && o.estimator != "light" && o.estimator != "bdpt")
         throw std::invalid_argument(
             fmt::format("unknown estimator '{}' (expected nee-mis, bdpt, light or bsdf-only)", o.estimator));
-    if (o.estimator != "bdpt" && (o.bdpt.only_s >= 0 || o.bdpt.only_t >= 0 || !o.bdpt.mis))
-        throw std::invalid_argument("bidirectional strategy settings (a single (s, t), unweighted) need the bdpt estimator");
+    if (o.estimator != "bdpt" && (o.bdpt.only_s >= 0 || o.bdpt.only_t >= 0 || !o.bdpt.mis ||
+                                  o.bdpt.keep != bdpt_settings::paths::all))
+        throw std::invalid_argument(
+            "bidirectional strategy settings (a single (s, t), unweighted, camera-only paths or the rest) need the bdpt estimator");
+    if (!o.bdpt.mis && o.bdpt.keep != bdpt_settings::paths::all)
+        throw std::invalid_argument(
+            "camera-only paths are those no other strategy can make, which the weighted render decides: keeping them "
+            "(or the rest) needs the MIS weights, not unweighted strategies");
     if (o.bdpt.only_t == 0) throw std::invalid_argument("strategy t = 0 does not exist (the pinhole cannot be hit): t >= 1");
     if (o.bdpt.only_s == 1 && o.bdpt.only_t == 1)
         throw std::invalid_argument("strategy (s, t) = (1, 1) is not used: a light seen directly is (0, 2)");
