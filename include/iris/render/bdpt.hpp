@@ -56,6 +56,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -118,6 +119,7 @@ public:
         std::vector<float> suffix;
         std::vector<typename propagation_type::vertex_throughput> light_bins;  ///< the B term's t_b at each y_i
         bool light_on_surface = false;  ///< y₀ is on an area light (s′ = 0 can make its paths)
+        std::optional<propagation_type> lterm;  ///< the light side's B term (copied only when on)
     };
 
     bdpt_integrator(const scene_desc& scene, const light_sampler& lights, const camera_rays& camera,
@@ -144,7 +146,11 @@ public:
         const double inv_y = 1.0 / static_cast<double>(cie::y_integral);
         const splat_weights sc(dist, wl, inv_y);
 
-        propagation_type lterm = bterm;  // the light side's bins (the same jitter and windows)
+        // the light side's bins: the same jitter and windows, copied only when the term is on
+        if (!ws.lterm) ws.lterm.emplace(make_propagation());
+        propagation_type& lterm = *ws.lterm;
+        if (bterm.on()) lterm = bterm;
+        else lterm.off();
         rays += light_subpath(tracer, wl, lrng, ws, lterm);
         rays += light_to_camera(tracer, wl, sc, ws, lterm, out);
 
@@ -356,7 +362,8 @@ private:
             y0.beta = m_hero.emitted(ls->le, wl) / ls->pdf_pos;
             ws.light.push_back(y0);
             lterm.start_light_subpath(ls->le, 1.0f / ls->pdf_pos);
-            if constexpr (propagates) ws.light_bins.push_back(lterm.throughput());
+            if constexpr (propagates)
+                if (lterm.on()) ws.light_bins.push_back(lterm.throughput());
         }
         const float cos_l = ws.light_on_surface ? std::fabs(glm::dot(ls->normal, ls->dir)) : 1.0f;
         sampled_spectrum<C> beta = ws.light[0].beta * (cos_l / ls->pdf_dir);
@@ -389,7 +396,8 @@ private:
                 y.pdf_fwd = to_area(pdf_dir, vx.sp.p, vx.ng, ws.light.back().si.sp.p);
                 y.material = shape.material;
                 ws.light.push_back(y);
-                if constexpr (propagates) ws.light_bins.push_back(lterm.throughput());
+                if constexpr (propagates)
+                if (lterm.on()) ws.light_bins.push_back(lterm.throughput());
             }
             if (depth + 1 >= m_settings.max_depth) break;  // y_{max_depth} is the last a strategy uses
             const bool scattered = visit_bxdf(m_scene.materials[shape.material], [&](const auto& bxdf) {

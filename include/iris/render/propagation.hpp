@@ -43,6 +43,8 @@ namespace iris {
 
 /// \brief The B term of a policy without one: it is never on, and every step is empty.
 struct no_propagation {
+    static constexpr bool on() noexcept { return false; }
+    void off() noexcept {}
     template <class Distribution>
     void start(const Distribution&, float) noexcept {}
     void emission(const emission_ref&, float) noexcept {}
@@ -82,12 +84,18 @@ struct no_propagation {
 template <std::size_t Bins>
 class propagation {
 public:
-    explicit propagation(const bin_tables<Bins>& tables) noexcept : m_t(tables) {}
+    explicit propagation(const bin_tables<Bins>& tables) noexcept : m_t(&tables) {}
+
+    /// \brief Is the term on (started with some bin outside the windows)? Off, every step
+    /// is a no-op (bdpt skips copying and keeping an unused light side's bins).
+    bool on() const noexcept { return m_on; }
+    /// \brief Turn the term off (as `start` does when every bin is inside the windows).
+    void off() noexcept { m_on = false; }
 
     /// \brief Start with jitter u: t_b = 1 − r_α(λ_b). Off if every bin is inside the windows.
     template <class Distribution>
     void start(const Distribution& dist, float u) noexcept {
-        m_bp = m_t.lattice.position(u);
+        m_bp = m_t->lattice.position(u);
         m_on = complement(dist, u, m_tb);
         m_tb_max = 1.0f;
     }
@@ -110,12 +118,12 @@ public:
         if constexpr (B::reads_albedo) {
             if (!m_on) return;
             if (albedo.count == 1) {
-                m_t.albedo[albedo.first].evaluate(m_bp, m_refl);
+                m_t->albedo[albedo.first].evaluate(m_bp, m_refl);
                 return;
             }
             for (std::size_t b = 0; b < Bins; ++b) m_refl[b] = 0.0f;
             for (std::uint32_t i = 0; i < albedo.count; ++i) {
-                const view v = m_t.albedo[albedo.first + i].at(m_bp, m_scratch);
+                const view v = m_t->albedo[albedo.first + i].at(m_bp, m_scratch);
                 const float w = albedo.weight[static_cast<int>(i)];
                 for (std::size_t b = 0; b < Bins; ++b) m_refl[b] += w * v[b];
             }
@@ -242,7 +250,7 @@ protected:
     /// \brief v += Δλ Σ_b w_b cmf(λ_b), in the fixed order `add_xyz` describes.
     void sum_xyz(const float* w_b, xyz& v) const noexcept {
         std::array<float, Bins> sx_, sy_, sz_;  // scratch, used only off the lattice
-        const auto xb = m_t.x_bar.at(m_bp, sx_), yb = m_t.y_bar.at(m_bp, sy_), zb = m_t.z_bar.at(m_bp, sz_);
+        const auto xb = m_t->x_bar.at(m_bp, sx_), yb = m_t->y_bar.at(m_bp, sy_), zb = m_t->z_bar.at(m_bp, sz_);
         constexpr std::size_t lanes = 8;
         std::array<float, lanes> sx{}, sy{}, sz{};
         const auto add = [&](std::size_t b, std::size_t l) {
@@ -261,7 +269,7 @@ protected:
             y += sy[l];
             z += sz[l];
         }
-        const double dl = static_cast<double>(m_t.lattice.bin_width());
+        const double dl = static_cast<double>(m_t->lattice.bin_width());
         v.x += dl * static_cast<double>(x);
         v.y += dl * static_cast<double>(y);
         v.z += dl * static_cast<double>(z);
@@ -274,10 +282,10 @@ protected:
     struct bin_spectra {
         const propagation& p;
         const sampled_spectrum<Bins>& albedo() const noexcept { return p.m_refl; }
-        view eta() const { return p.m_t.eta[p.m_material].at(p.m_bp, p.m_eta_scratch); }
-        view eta2() const { return p.m_t.eta2[p.m_material].at(p.m_bp, p.m_eta2_scratch); }
-        view inv_eta2() const { return p.m_t.inv_eta2[p.m_material].at(p.m_bp, p.m_inv_eta2_scratch); }
-        view k() const { return p.m_t.k[p.m_material].at(p.m_bp, p.m_k_scratch); }
+        view eta() const { return p.m_t->eta[p.m_material].at(p.m_bp, p.m_eta_scratch); }
+        view eta2() const { return p.m_t->eta2[p.m_material].at(p.m_bp, p.m_eta2_scratch); }
+        view inv_eta2() const { return p.m_t->inv_eta2[p.m_material].at(p.m_bp, p.m_inv_eta2_scratch); }
+        view k() const { return p.m_t->k[p.m_material].at(p.m_bp, p.m_k_scratch); }
     };
     bin_spectra spectra() const noexcept { return {*this}; }
 
@@ -287,11 +295,11 @@ protected:
     view emitted(const emission_ref& r, float& k) noexcept {
         if (r.count == 1) {
             if (r.weight[0] != 1.0f) k *= r.weight[0];
-            return m_t.emission[r.first].at(m_bp, m_scratch);
+            return m_t->emission[r.first].at(m_bp, m_scratch);
         }
         for (std::size_t b = 0; b < Bins; ++b) m_mix[b] = 0.0f;
         for (std::uint32_t i = 0; i < r.count; ++i) {
-            const view v = m_t.emission[r.first + i].at(m_bp, m_scratch);
+            const view v = m_t->emission[r.first + i].at(m_bp, m_scratch);
             const float wi = r.weight[static_cast<int>(i)];
             for (std::size_t b = 0; b < Bins; ++b) m_mix[b] += wi * v[b];
         }
@@ -343,7 +351,7 @@ protected:
     /// branch-free pass. Other kernels are evaluated bin by bin.
     template <class Distribution>
     bool complement(const Distribution& dist, float u, sampled_spectrum<Bins>& out) const noexcept {
-        const auto& lat = m_t.lattice;
+        const auto& lat = m_t->lattice;
         if constexpr (requires { dist.bound_kernel().support(); } &&
                       requires { requires std::remove_cvref_t<decltype(dist.bound_kernel())>::indicator; }) {
             for (std::size_t b = 0; b < Bins; ++b) out[b] = 1.0f;  // in place: assigning a temporary costs a 320-byte rep movsq per sample
@@ -378,7 +386,7 @@ protected:
         }
     }
 
-    const bin_tables<Bins>& m_t;
+    const bin_tables<Bins>* m_t;  ///< a pointer, so that a workspace's instance can be reassigned
     bool m_on = false;
     bin_position m_bp;
     std::uint32_t m_material = 0;
