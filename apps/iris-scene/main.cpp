@@ -8,18 +8,24 @@
 //                                            exit 0, or the error (FILE:LINE: POINTER: what)
 //                                            and exit 2
 //   iris-scene export NAME|FILE -o OUT       every shape's triangles as one mesh; the format
-//                                            follows OUT's extension: .obj, .ply or .off
+//                                            follows OUT's extension: .obj, .ply or .off; or,
+//                                            for OUT.pbrt, the whole scene in pbrt-v4's format
+//                                            [--spp N] [--integrator NAME] [--max-depth D]
+//                                            (docs/pbrt-export.md)
 //
 // NAME is a built-in scene (`iris-scene list`); anything else is read as a scene file
 // (format: docs/scene-format.md). Bad input: one line on stderr, exit status 2.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <numbers>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <fmt/core.h>
 #include <glm/geometric.hpp>
@@ -260,10 +266,24 @@ void check(const std::string& file) {
                    l.scene.shapes[p.shape].name, p.detail);
 }
 
-void export_mesh(const std::string& name, const std::string& out) {
-    const loaded l = load(name);
+bool is_pbrt(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".pbrt";
+}
+
+/// `pbrt_flags`: the pbrt-only options given, refused for a mesh export.
+/// `width`, `height`: the image's (0: the scene's).
+void export_scene(const std::string& name, const std::string& out, const iris::scene::pbrt_export_options& pbrt,
+                  const std::vector<std::string>& pbrt_flags, int width, int height) {
+    if (!is_pbrt(out) && !pbrt_flags.empty())
+        throw usage_error(pbrt_flags.front() + " applies to a pbrt-v4 export only (-o FILE.pbrt), not to " + out);
+    loaded l = load(name);
+    if (width > 0) l.scene.camera.width = width;
+    if (height > 0) l.scene.camera.height = height;
     try {
-        iris::scene::export_scene_mesh(l.scene, out);
+        if (is_pbrt(out)) iris::scene::export_pbrt(l.scene, out, pbrt);
+        else iris::scene::export_scene_mesh(l.scene, out);
     } catch (const iris::scene::error& e) {
         throw usage_error(e.what());
     }
@@ -280,6 +300,8 @@ int main(int argc, char** argv) {
     struct options {
         std::string scene, out;
         bool json = false;
+        iris::scene::pbrt_export_options pbrt;
+        int width = 0, height = 0;  ///< 0: the scene's
     };
     auto o = std::make_shared<options>();
 
@@ -294,10 +316,27 @@ int main(int argc, char** argv) {
     check_cmd->add_option("FILE", o->scene, "scene file (or built-in name)")->required();
     check_cmd->callback([o] { check(o->scene); });
 
-    auto* export_cmd = app.add_subcommand("export", "Write the scene's geometry as one mesh (.obj, .ply or .off)");
+    auto* export_cmd = app.add_subcommand(
+        "export", "Write the scene's geometry as one mesh (.obj, .ply or .off), or the whole scene for pbrt-v4 (.pbrt)");
     export_cmd->add_option("SCENE", o->scene, "built-in scene name or scene file")->required();
-    export_cmd->add_option("-o,--output", o->out, "output mesh file; its extension picks the format")->required();
-    export_cmd->callback([o] { export_mesh(o->scene, o->out); });
+    export_cmd->add_option("-o,--output", o->out, "output file; its extension picks the format")->required();
+    auto* spp = export_cmd->add_option("--spp", o->pbrt.spp, "pbrt-v4 only: pixel samples (zsobol)")
+                    ->check(CLI::Range(1, 1 << 30))->default_val(64);
+    auto* integrator = export_cmd->add_option("--integrator", o->pbrt.integrator, "pbrt-v4 only: its integrator")
+                           ->check(CLI::IsMember({"volpath", "path", "bdpt", "lightpath", "simplepath", "mlt", "sppm"}))
+                           ->default_val("volpath");
+    auto* depth = export_cmd->add_option("--max-depth", o->pbrt.max_depth, "pbrt-v4 only: its maxdepth")
+                      ->check(CLI::Range(0, 1 << 20))->default_val(32);
+    auto* width = export_cmd->add_option("--width", o->width, "pbrt-v4 only: image width (default: the scene's)")
+                      ->check(CLI::Range(1, 1 << 16));
+    auto* height = export_cmd->add_option("--height", o->height, "pbrt-v4 only: image height (default: the scene's)")
+                       ->check(CLI::Range(1, 1 << 16));
+    export_cmd->callback([o, spp, integrator, depth, width, height] {
+        std::vector<std::string> given;
+        for (const auto* opt : {spp, integrator, depth, width, height})
+            if (opt->count() > 0) given.push_back(opt->get_name());
+        export_scene(o->scene, o->out, o->pbrt, given, o->width, o->height);
+    });
 
     return iris::app::run(app, argc, argv);
 }

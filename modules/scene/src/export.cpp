@@ -41,7 +41,9 @@ void export_scene_mesh(const iris::scene_desc& s, const std::filesystem::path& p
     if (ext == ".obj") f = mesh_format::obj;
     else if (ext == ".ply") f = mesh_format::ply;
     else if (ext == ".off") f = mesh_format::off;
-    else throw error(path.string(), 0, "", "unsupported mesh format '" + ext + "'; expected .obj, .ply or .off");
+    else
+        throw error(path.string(), 0, "",
+                    "unsupported mesh format '" + ext + "'; expected .obj, .ply or .off (or .pbrt: the whole scene in pbrt-v4's format)");
 
     std::size_t vertices = 0, triangles = 0;
     for (const auto& sh : s.shapes) {

@@ -73,4 +73,22 @@ std::vector<std::string> approximations(const iris::scene_desc& scene);
 /// written or the extension is not one of those.
 void export_scene_mesh(const iris::scene_desc& scene, const std::filesystem::path& path);
 
+/// \brief What `export_pbrt` writes besides the scene: pbrt-v4's sampler, integrator and depth.
+struct pbrt_export_options {
+    int spp = 64;                       ///< "zsobol" pixel samples
+    std::string integrator = "volpath"; ///< pbrt-v4's integrator (volpath, path, bdpt, lightpath, …)
+    int max_depth = 32;                 ///< its "maxdepth" (iris's default path length)
+};
+
+/// \brief The scene in pbrt-v4's format (docs/pbrt-export.md): camera, box-filtered film,
+/// materials, emitters, lights and triangles, every spectrum iris's own as an inline
+/// (λ, value) list and every light scaled so that pbrt-v4's radiance is iris's. \throws
+/// error for what pbrt-v4 cannot be given exactly yet (image textures, environment images,
+/// reflectance-only conductors) or bad options.
+std::string pbrt_scene_text(const iris::scene_desc& scene, const pbrt_export_options& options = {});
+
+/// \brief `pbrt_scene_text` written atomically to `path`. \throws error
+void export_pbrt(const iris::scene_desc& scene, const std::filesystem::path& path,
+                 const pbrt_export_options& options = {});
+
 }  // namespace iris::scene
