@@ -57,11 +57,14 @@ for scene in "${scenes[@]}"; do
     t16=$(${r}_run "$scene" 16 7 "$out/$scene-$r-speed.exr")
     for budget in 0.5 1 2 4; do
       spp=$(/usr/bin/python3 -c "print(max(1, round(16 * $budget / $t16)))")
+      # pbrt-v4's zsobol renders 2^floor(log2 spp) samples (its SamplesPerPixel): report those
+      shown=$spp
+      [ "$r" = pbrt ] && shown=$(/usr/bin/python3 -c "print(1 << ($spp.bit_length() - 1))")
       for seed in 1 2 3; do
         f="$out/$scene-$r-$budget-s$seed.exr"
         secs=$(${r}_run "$scene" "$spp" "$seed" "$f")
         d=$("$img" diff --json "$f" "$ref")
-        echo "$scene,$r,$spp,$seed,$secs,$(field "$d" relmse),$(field "$d" ssim)"
+        echo "$scene,$r,$shown,$seed,$secs,$(field "$d" relmse),$(field "$d" ssim)"
       done
     done
     echo "# $scene $r 4 s, bias split against the reference: $("$img" bias --json "$out/$scene-$r-4-s"{1,2,3}.exr -r "$ref" | tr -d '\n ')"
