@@ -97,6 +97,8 @@ struct args {
     bool tev_on = false;
     std::uint64_t seed = 1;
     bool half = false, list_presets = false, list_scenes = false, resume = false, keep_checkpoint = false;
+    bool strict = false;                                 ///< a pbrt-v4 scene's approximations are errors
+    bool spp_given = false, max_depth_given = false;     ///< else the scene file's suggestion, if any
 };
 
 void check_writable(const std::string& path, const char* what) {
@@ -233,7 +235,7 @@ void write_stats(const iris::scene_desc& s, const args& a, iris::renderer::statu
     });
 }
 
-int run_render(const args& a, const ranks_session& mpi) {
+int run_render(args a, const ranks_session& mpi) {
     if (a.spp <= 0) throw iris::app::usage_error(fmt::format("--spp must be > 0, got {}", a.spp));
     if (a.nthold < 1) throw iris::app::usage_error(fmt::format("--nthold must be >= 1, got {}", a.nthold));
     if (a.threads < 0) throw iris::app::usage_error(fmt::format("--threads must be >= 0, got {}", a.threads));
@@ -268,11 +270,14 @@ int run_render(const args& a, const ranks_session& mpi) {
 
     iris::scene_desc scene;
     try {
-        scene = iris::scene::load_scene(a.scene);
+        scene = iris::scene::load_scene(a.scene, {.strict = a.strict});
     } catch (const std::exception& e) {
         throw iris::app::usage_error(e.what());
     }
     for (const auto& m : iris::scene::approximations(scene)) fmt::print(stderr, "iris-render: warning: {}\n", m);
+    // a pbrt-v4 file's Sampler and Integrator suggest them; the command line decides
+    if (!a.spp_given && scene.default_spp > 0) a.spp = scene.default_spp;
+    if (!a.max_depth_given && scene.default_max_depth > 0) a.max_depth = std::min(scene.default_max_depth, 10000);
 
     iris::renderer::options opt;
     opt.preset = a.preset;
@@ -478,9 +483,10 @@ int main(int argc, char** argv) {
     CLI::App app{"iris-render: progressive spectral rendering of a scene with a sampling preset", "iris-render"};
     app.set_version_flag("--version", std::string(iris::version));
     args a;
-    app.add_option("SCENE", a.scene, "built-in scene name (--list-scenes) or scene JSON file");
+    app.add_option("SCENE", a.scene, "built-in scene name (--list-scenes), scene JSON file or pbrt-v4 file (.pbrt)");
     app.add_option("--preset", a.preset, "sampling preset (--list-presets)")->capture_default_str();
-    app.add_option("--spp", a.spp, "samples per pixel")->capture_default_str();
+    auto* spp_option = app.add_option("--spp", a.spp, "samples per pixel (default: a pbrt-v4 scene's pixelsamples, else 16)")
+                           ->capture_default_str();
     app.add_option("--threads", a.threads, "worker threads (0: all)")->capture_default_str();
     app.add_option("--seed", a.seed, "random seed")->capture_default_str();
     app.add_option("--nthold", a.nthold, "relaxation length N_thold in samples per pixel")->capture_default_str();
@@ -491,7 +497,11 @@ int main(int argc, char** argv) {
     app.add_option("--stats", a.stats, "write run statistics as JSON");
     app.add_option("--every", a.every, "rewrite the image every K samples per pixel (0: only at the end)")->capture_default_str();
     app.add_option("--every-seconds", a.every_seconds, "rewrite the image every T seconds (0: off)")->capture_default_str();
-    app.add_option("--max-depth", a.max_depth, "maximum number of scattering events")->capture_default_str();
+    auto* depth_option = app.add_option("--max-depth", a.max_depth,
+                                        "maximum number of scattering events (default: a pbrt-v4 scene's maxdepth, else 32)")
+                             ->capture_default_str();
+    app.add_flag("--strict", a.strict,
+                 "a pbrt-v4 scene: refuse what the importer would approximate (docs/pbrt-import.md) instead of warning");
     app.add_option("--isa", a.isa,
                    fmt::format("instruction set of the integrator's hot loop: auto (the widest this CPU runs) or one of "
                                "{} (the images are bit-identical; only the speed differs)",
@@ -558,6 +568,8 @@ int main(int argc, char** argv) {
         }
         if (a.scene.empty()) throw iris::app::usage_error("a scene is required (see --list-scenes)");
         a.tev_on = tev_option->count() > 0;
+        a.spp_given = spp_option->count() > 0;
+        a.max_depth_given = depth_option->count() > 0;
         status = run_render(a, mpi);
     });
     const int rc = iris::app::run(app, argc, argv);

@@ -14,7 +14,9 @@
 //                                            (docs/pbrt-export.md)
 //
 // NAME is a built-in scene (`iris-scene list`); anything else is read as a scene file
-// (format: docs/scene-format.md). Bad input: one line on stderr, exit status 2.
+// (format: docs/scene-format.md), or a pbrt-v4 file if it ends in .pbrt (docs/pbrt-import.md;
+// info and check take --strict: what the importer would approximate is an error). Bad input:
+// one line on stderr, exit status 2.
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -50,11 +52,11 @@ struct loaded {
 };
 
 /// Parse and mesh, timing both; scene errors are the user's input → exit 2.
-loaded load(const std::string& name_or_path) {
+loaded load(const std::string& name_or_path, bool strict = false) {
     try {
         const auto t0 = std::chrono::steady_clock::now();
         loaded l;
-        l.doc = iris::scene::load_scene_document(name_or_path);
+        l.doc = iris::scene::load_scene_document(name_or_path, {.strict = strict});
         l.scene = iris::scene::build_scene(l.doc);
         l.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         l.source = iris::scene::builtin_scene_text(name_or_path) ? "built-in (data/scenes/" + name_or_path + ".json)"
@@ -82,8 +84,9 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
         }
         std::string operator()(const iris::material::dielectric& d) const {
             const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"
-                                : std::holds_alternative<iris::cauchy_ior>(d.ior) ? "cauchy"
-                                                                                   : "sellmeier";
+                                : std::holds_alternative<iris::cauchy_ior>(d.ior)    ? "cauchy"
+                                : std::holds_alternative<iris::sellmeier_ior>(d.ior) ? "sellmeier"
+                                                                                     : "tabulated";
             return fmt::format("dielectric {} n(550)={:.4f}{}{}", model, iris::refractive_index(d.ior, 550.0),
                                iris::is_dispersive(d.ior) ? " dispersive" : "",
                                d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"));
@@ -178,8 +181,8 @@ void list() {
     for (const auto& b : iris::scene::builtin_scenes()) fmt::print("{:<18} {}\n", b.name, b.description);
 }
 
-void info(const std::string& name, bool json) {
-    const loaded l = load(name);
+void info(const std::string& name, bool json, bool strict) {
+    const loaded l = load(name, strict);
     const auto& s = l.scene;
     const auto f = s.features();
     const auto es = emitter_statistics(s);
@@ -255,8 +258,8 @@ void info(const std::string& name, bool json) {
     fmt::print("load         {:.2f} ms\n", l.seconds * 1e3);
 }
 
-void check(const std::string& file) {
-    const loaded l = load(file);
+void check(const std::string& file, bool strict) {
+    const loaded l = load(file, strict);
     fmt::print("ok: {} ({} triangles, {} shapes, {} emitters)\n", l.scene.name, l.scene.triangle_count(),
                l.scene.shapes.size(), l.scene.emitters.size());
     for (const auto& m : iris::scene::approximations(l.scene)) fmt::print("warning: {}\n", m);
@@ -299,7 +302,7 @@ int main(int argc, char** argv) {
 
     struct options {
         std::string scene, out;
-        bool json = false;
+        bool json = false, strict = false;
         iris::scene::pbrt_export_options pbrt;
         int width = 0, height = 0;  ///< 0: the scene's
     };
@@ -310,11 +313,13 @@ int main(int argc, char** argv) {
     auto* info_cmd = app.add_subcommand("info", "Triangles, materials, emitters, bounds and feature summary of a scene");
     info_cmd->add_option("SCENE", o->scene, "built-in scene name or scene file")->required();
     info_cmd->add_flag("--json", o->json, "print one JSON object instead of text");
-    info_cmd->callback([o] { info(o->scene, o->json); });
+    info_cmd->add_flag("--strict", o->strict, "a pbrt-v4 scene: what the importer would approximate is an error");
+    info_cmd->callback([o] { info(o->scene, o->json, o->strict); });
 
     auto* check_cmd = app.add_subcommand("check", "Validate a scene file: exit 0 if valid, 2 with the error otherwise");
     check_cmd->add_option("FILE", o->scene, "scene file (or built-in name)")->required();
-    check_cmd->callback([o] { check(o->scene); });
+    check_cmd->add_flag("--strict", o->strict, "a pbrt-v4 scene: what the importer would approximate is an error");
+    check_cmd->callback([o] { check(o->scene, o->strict); });
 
     auto* export_cmd = app.add_subcommand(
         "export", "Write the scene's geometry as one mesh (.obj, .ply or .off), or the whole scene for pbrt-v4 (.pbrt)");

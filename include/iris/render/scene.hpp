@@ -8,6 +8,7 @@
 /// builds an `Intersector` (render/intersector.hpp) over the same shapes, in the same
 /// order, so that a hit's shape index is an index into `scene_desc::shapes`.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -41,8 +42,15 @@ struct constant_ior {
     constexpr double n(double /*lambda_nm*/) const noexcept { return value; }
 };
 
+/// \brief A tabulated index of refraction n(λ) (linear between the nodes, clamped beyond):
+/// a pbrt-v4 scene's inline or named η spectrum.
+struct tabulated_ior {
+    tabulated_spectrum table;
+    double n(double lambda_nm) const noexcept { return table(lambda_nm); }
+};
+
 /// \brief The refractive index models a dielectric can use.
-using ior_model = std::variant<constant_ior, cauchy_ior, sellmeier_ior>;
+using ior_model = std::variant<constant_ior, cauchy_ior, sellmeier_ior, tabulated_ior>;
 
 /// \brief n(λ) of any `ior_model`.
 inline double refractive_index(const ior_model& m, double lambda_nm) noexcept {
@@ -53,6 +61,10 @@ inline double refractive_index(const ior_model& m, double lambda_nm) noexcept {
 inline bool is_dispersive(const ior_model& m) noexcept {
     if (std::holds_alternative<constant_ior>(m)) return false;
     if (const auto* c = std::get_if<cauchy_ior>(&m)) return c->b_um2 != 0.0;
+    if (const auto* t = std::get_if<tabulated_ior>(&m)) {
+        const auto v = t->table.values();
+        return std::any_of(v.begin(), v.end(), [&](double x) { return x != v.front(); });
+    }
     return true;
 }
 
@@ -230,6 +242,11 @@ struct scene_desc {
     std::vector<light_desc> lights;  ///< emit through `emitters[light.emitter]`
     std::optional<environment_desc> environment;
     std::vector<image_texture> textures;  ///< indexed by the materials that use them
+    /// What loading approximated or ignored, one sentence each (a pbrt-v4 file's lens, pixel
+    /// filter, …): the tools print them as warnings (`iris::scene::approximations`).
+    std::vector<std::string> notes;
+    int default_spp = 0;        ///< the file's suggested samples per pixel (pbrt-v4's Sampler), 0: none
+    int default_max_depth = 0;  ///< the file's suggested path length (pbrt-v4's Integrator), 0: none
 
     std::size_t triangle_count() const noexcept {
         std::size_t n = 0;

@@ -43,6 +43,73 @@ iris::triangle_mesh make_quad(float sx, float sz) {
     return m;
 }
 
+/// A sphere of radius r about the origin (pbrt-v4's `sphere`), tessellated: `sphere_rings`
+/// rings between the poles (+z and −z, as pbrt-v4's), 2·`sphere_rings` segments each, vertices
+/// on the sphere and shared (one per pole, the seam closed: a closed solid, as glass needs),
+/// counter-clockwise seen from outside, with the sphere's normals. The flat facets
+/// underestimate the area by about (π/segments)²/3.
+constexpr int sphere_rings = 96;
+iris::triangle_mesh make_sphere(float r) {
+    iris::triangle_mesh m;
+    const int rings = sphere_rings, segments = 2 * sphere_rings;
+    const auto add = [&](double theta, double phi) {
+        const glm::vec3 n(static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::sin(theta) * std::sin(phi)),
+                          static_cast<float>(std::cos(theta)));
+        m.positions.push_back(r * n);
+        m.normals.push_back(n);
+    };
+    add(0.0, 0.0);  // vertex 0: the north pole (+z)
+    for (int i = 1; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) add(std::numbers::pi * i / rings, 2.0 * std::numbers::pi * j / segments);
+    add(std::numbers::pi, 0.0);  // the south pole
+    const auto south = static_cast<std::uint32_t>(m.positions.size() - 1);
+    // ring i (1 … rings−1), segment j (mod segments)
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(1 + (i - 1) * segments + (j % segments)); };
+    for (int j = 0; j < segments; ++j) {
+        m.triangles.push_back({0, at(1, j), at(1, j + 1)});  // φ grows counter-clockwise seen from +z
+        for (int i = 1; i + 1 < rings; ++i) {
+            m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+        m.triangles.push_back({at(rings - 1, j), south, at(rings - 1, j + 1)});
+    }
+    return m;
+}
+
+/// A disk (pbrt-v4's `disk`): radius r, an inner radius (an annulus), in the plane z = height,
+/// facing +z, tessellated into 2·`sphere_rings` segments.
+iris::triangle_mesh make_disk(float r, float inner, float height) {
+    iris::triangle_mesh m;
+    const int segments = 2 * sphere_rings;
+    const bool annulus = inner > 0.0f;
+    if (!annulus) {
+        m.positions.emplace_back(0.0f, 0.0f, height);
+        m.uvs.emplace_back(0.0f, 1.0f);
+    }
+    const std::uint32_t ring0 = static_cast<std::uint32_t>(m.positions.size());
+    for (int j = 0; j < segments; ++j) {
+        const double phi = 2.0 * std::numbers::pi * j / segments;
+        const float c = static_cast<float>(std::cos(phi)), s = static_cast<float>(std::sin(phi));
+        m.positions.emplace_back(r * c, r * s, height);
+        m.uvs.emplace_back(static_cast<float>(j) / segments, 0.0f);
+        if (annulus) {
+            m.positions.emplace_back(inner * c, inner * s, height);
+            m.uvs.emplace_back(static_cast<float>(j) / segments, 1.0f);
+        }
+    }
+    for (int j = 0; j < segments; ++j) {
+        const auto k = static_cast<std::uint32_t>(j), n = static_cast<std::uint32_t>((j + 1) % segments);
+        if (!annulus) {
+            m.triangles.push_back({0, ring0 + k, ring0 + n});  // counter-clockwise seen from +z
+        } else {
+            const std::uint32_t o0 = ring0 + 2 * k, i0 = o0 + 1, o1 = ring0 + 2 * n, i1 = o1 + 1;
+            m.triangles.push_back({i0, o0, o1});
+            m.triangles.push_back({i0, o1, i1});
+        }
+    }
+    return m;
+}
+
 iris::triangle_mesh recipe(const shape_spec& s) {
     const glm::vec3 origin(0.0f);
     switch (s.type) {
@@ -53,6 +120,9 @@ iris::triangle_mesh recipe(const shape_spec& s) {
             return to_core(geometry::make_hollow_cube(origin, s.size.x, s.size.x - 2.0f * s.wall));
         case shape_type::quad: return make_quad(s.size.x, s.size.z);
         case shape_type::mesh: return to_core(geometry::load_mesh(s.file));
+        case shape_type::triangles: return s.triangles ? *s.triangles : iris::triangle_mesh{};
+        case shape_type::sphere: return make_sphere(s.size.x);
+        case shape_type::disk: return make_disk(s.size.x, s.size.y, s.size.z);
     }
     return {};
 }
@@ -223,7 +293,7 @@ iris::scene_desc build_scene(const scene_document& doc) {
 }
 
 std::vector<std::string> approximations(const iris::scene_desc& s) {
-    std::vector<std::string> out;
+    std::vector<std::string> out = s.notes;
     if (s.environment && s.environment->map && s.environment->map->negative_texels > 0) {
         const auto& m = *s.environment->map;
         out.push_back("environment image " + m.file + ": " + std::to_string(m.negative_texels) + " of " +

@@ -30,6 +30,9 @@ std::string_view shape_type_name(shape_type t) noexcept {
         case shape_type::hollow_cube: return "hollow_cube";
         case shape_type::quad: return "quad";
         case shape_type::mesh: return "mesh";
+        case shape_type::triangles: return "triangles";
+        case shape_type::sphere: return "sphere";
+        case shape_type::disk: return "disk";
     }
     return "?";
 }
@@ -589,6 +592,10 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
                 r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "file"});
                 sh.file = resolve_mesh(r.at("file"), base_dir);
                 break;
+            case shape_type::triangles:
+            case shape_type::sphere:
+            case shape_type::disk:
+                break;  // a pbrt-v4 file's shapes: not in `shape_types`, never read from JSON
         }
         sh.name = r.has("name") ? r.at("name").string()
                                 : std::string(shape_type_name(sh.type)) + "." + std::to_string(i);

@@ -107,7 +107,11 @@ struct material_writer {
     std::string operator()(const material::dielectric& d) const {
         std::string out = "\"string type\" [ \"dielectric\" ]\n    ";
         if (!is_dispersive(d.ior)) out += "\"float eta\" [ " + num(refractive_index(d.ior, 550.0)) + " ]";
-        else out += "\"spectrum eta\" " + ior_spectrum(s, {}, [&](double x) { return refractive_index(d.ior, x); });
+        else {
+            const auto* t = std::get_if<tabulated_ior>(&d.ior);
+            const std::span<const double> knots = t ? t->table.wavelengths() : std::span<const double>{};
+            out += "\"spectrum eta\" " + ior_spectrum(s, knots, [&](double x) { return refractive_index(d.ior, x); });
+        }
         if (d.roughness > 0.0f) out += "\n    " + roughness(d.roughness);
         return out;
     }

@@ -74,8 +74,11 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
                             else if constexpr (std::is_same_v<N, cauchy_ior>) {
                                 h(n.a);
                                 h(n.b_um2);
-                            } else {
+                            } else if constexpr (std::is_same_v<N, sellmeier_ior>) {
                                 for (double v : {n.b1, n.b2, n.b3, n.c1, n.c2, n.c3}) h(v);
+                            } else {
+                                static_assert(std::is_same_v<N, tabulated_ior>, "fingerprint: hash every IOR model");
+                                h(n.table);
                             }
                         },
                         x.ior);

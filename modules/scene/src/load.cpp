@@ -1,4 +1,6 @@
 // Where scenes come from: files, the embedded built-ins, or either by name.
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -31,7 +33,15 @@ scene_document builtin_document(std::string_view name) {
     return parse_scene_document(*text, std::string(name) + ".json", {});
 }
 
-scene_document file_document(const std::filesystem::path& path) {
+bool is_pbrt(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".pbrt";
+}
+
+/// A JSON scene file, or a pbrt-v4 one (by its extension, .pbrt).
+scene_document file_document(const std::filesystem::path& path, const pbrt_import_options& options) {
+    if (is_pbrt(path)) return parse_pbrt_document(read_text(path), path.string(), path.parent_path(), options);
     return parse_scene_document(read_text(path), path.string(), path.parent_path());
 }
 
@@ -42,20 +52,24 @@ iris::scene_desc parse_scene(std::string_view json_text, const std::string& sour
     return build_scene(parse_scene_document(json_text, source_name, base_dir));
 }
 
-iris::scene_desc load_scene_file(const std::filesystem::path& path) { return build_scene(file_document(path)); }
+iris::scene_desc load_scene_file(const std::filesystem::path& path, const pbrt_import_options& options) {
+    return build_scene(file_document(path, options));
+}
 
 iris::scene_desc builtin_scene(std::string_view name) { return build_scene(builtin_document(name)); }
 
-scene_document load_scene_document(std::string_view name_or_path) {
+scene_document load_scene_document(std::string_view name_or_path, const pbrt_import_options& options) {
     if (builtin_scene_text(name_or_path)) return builtin_document(name_or_path);
     const std::filesystem::path p(name_or_path);
     std::error_code ec;
     if (!std::filesystem::exists(p, ec))
         throw error(std::string(name_or_path), 0, "",
                     "no such scene file, and not a built-in scene (" + builtin_scene_names() + ")");
-    return file_document(p);
+    return file_document(p, options);
 }
 
-iris::scene_desc load_scene(std::string_view name_or_path) { return build_scene(load_scene_document(name_or_path)); }
+iris::scene_desc load_scene(std::string_view name_or_path, const pbrt_import_options& options) {
+    return build_scene(load_scene_document(name_or_path, options));
+}
 
 }  // namespace iris::scene

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -34,6 +35,10 @@ enum class shape_type {
     hollow_cube,  ///< cube of side `size.x` with a concentric cubic cavity; walls `wall` thick
     quad,         ///< rectangle `size.x` × `size.z` in the plane y = 0, front face +y
     mesh,         ///< triangles from `file` (OBJ, PLY or OFF)
+    triangles,    ///< the triangles given in `triangles` (a pbrt-v4 file's `trianglemesh`, …)
+    sphere,       ///< a sphere of radius `size.x` about the origin, tessellated (pbrt-v4's `sphere`)
+    disk,         ///< a disk of radius `size.x`, inner radius `size.y`, in the plane z = `size.z`,
+                  ///< facing +z, tessellated (pbrt-v4's `disk`)
 };
 
 /// \brief The JSON name of a shape type (`"hollow_cube"`, …).
@@ -48,6 +53,7 @@ struct shape_spec {
     glm::vec3 size{1.0f};
     float wall = 0.0f;
     std::filesystem::path file;   ///< `mesh` only: absolute, or relative to the working directory
+    std::shared_ptr<const iris::triangle_mesh> triangles;  ///< `triangles` only (shared by instances)
     glm::mat4 transform{1.0f};    ///< object → world, applied after the recipe
     bool flip = false;            ///< reverse every triangle (normals point the other way)
     std::uint32_t material = 0;
@@ -103,6 +109,20 @@ struct scene_document {
 /// bad input; std::bad_alloc stays possible).
 scene_document parse_scene_document(std::string_view json_text, const std::string& source_name,
                                     const std::filesystem::path& base_dir);
+
+/// \brief How the pbrt-v4 importer treats what it can only approximate.
+struct pbrt_import_options {
+    bool strict = false;      ///< an approximation (a note) is an error
+    bool read_files = true;   ///< false: `Include`, `Import` and .spd files are errors (the fuzzer's setting)
+};
+
+/// \brief Parse a pbrt-v4 scene (docs/pbrt-import.md): the subset iris renders, everything
+/// else an error at `FILE:LINE:COLUMN`, or a note in `desc.notes` where an approximation is
+/// reasonable (an error with `strict`). `Include`/`Import` and mesh files are resolved
+/// against `base_dir`, then against the including file's directory. \throws
+/// iris::scene::error
+scene_document parse_pbrt_document(std::string_view text, const std::string& source_name,
+                                   const std::filesystem::path& base_dir, const pbrt_import_options& options = {});
 
 /// \brief A scene compiled into the library (its JSON text is `data/scenes/NAME.json`).
 struct builtin_info {

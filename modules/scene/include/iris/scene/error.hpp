@@ -24,7 +24,21 @@ public:
           m_pointer(std::move(pointer)),
           m_message(std::move(message)) {}
 
+    /// \brief A column within the line (1-based), for formats read token by token (pbrt-v4):
+    /// `what()` reads `FILE:LINE:COLUMN: MESSAGE`.
+    struct column {
+        std::size_t value = 0;
+    };
+    error(std::string file, std::size_t line, column col, std::string message)
+        : std::runtime_error(format(file + ":" + std::to_string(line) + ":" + std::to_string(col.value), 0, "", message)),
+          m_file(std::move(file)),
+          m_line(line),
+          m_column(col.value),
+          m_message(std::move(message)) {}
+
     const std::string& file() const noexcept { return m_file; }
+    /// \brief The column (1-based), 0 if unknown.
+    std::size_t column_number() const noexcept { return m_column; }
     std::size_t line() const noexcept { return m_line; }
     const std::string& pointer() const noexcept { return m_pointer; }
     /// \brief The message alone, without file, line and pointer.
@@ -52,6 +66,7 @@ private:
 
     std::string m_file;
     std::size_t m_line;
+    std::size_t m_column = 0;
     std::string m_pointer;
     std::string m_message;
 };

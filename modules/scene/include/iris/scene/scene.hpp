@@ -32,19 +32,20 @@ iris::scene_desc build_scene(const scene_document& doc);
 iris::scene_desc parse_scene(std::string_view json_text, const std::string& source_name,
                              const std::filesystem::path& base_dir);
 
-/// \brief Read and parse a scene file (mesh paths relative to the file's directory).
-iris::scene_desc load_scene_file(const std::filesystem::path& path);
+/// \brief Read and parse a scene file (mesh paths relative to the file's directory): a
+/// pbrt-v4 file if its extension is .pbrt (docs/pbrt-import.md; `options`), JSON otherwise.
+iris::scene_desc load_scene_file(const std::filesystem::path& path, const pbrt_import_options& options = {});
 
 /// \brief A built-in scene (`builtin_scenes()`), from JSON compiled into the library: no
 /// file is read. \throws error listing the valid names.
 iris::scene_desc builtin_scene(std::string_view name);
 
 /// \brief A built-in scene if `name_or_path` names one, else the scene file at that path.
-iris::scene_desc load_scene(std::string_view name_or_path);
+iris::scene_desc load_scene(std::string_view name_or_path, const pbrt_import_options& options = {});
 
 /// \brief The document (description, recipes) behind `load_scene`, for tools that report
 /// on a scene without meshing it.
-scene_document load_scene_document(std::string_view name_or_path);
+scene_document load_scene_document(std::string_view name_or_path, const pbrt_import_options& options = {});
 
 /// \brief A 64-bit fingerprint (FNV-1a) of everything a render of `scene` depends on: the
 /// camera, the spectral domain, every material, emitter, triangle and the environment, as

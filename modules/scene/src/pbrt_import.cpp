@@ -1,0 +1,1134 @@
+// pbrt-v4 text → scene_document (docs/pbrt-import.md): the tokenizer, the graphics state and
+// the directives, parameters and types iris can render; everything else is an error at its
+// FILE:LINE:COLUMN, or, where an approximation is reasonable, a note the tools print as a
+// warning (an error with `strict`). CGAL-free, like the JSON half: the fuzzer links it.
+//
+// Conventions (docs/pbrt-import.md, "Conventions"): a light's spectrum S and `scale` become
+// iris's radiance scale·S/Y(S), Y the luminance (pbrt-v4 normalises by the photometric
+// integral and its film does not divide by ∫ȳ; iris's does), an "rgb" light scale·E_rgb (the
+// RGB illuminant spectrum, D65 white); an "rgb" reflectance is upsampled by Jakob–Hanika
+// (as pbrt-v4 does). pbrt-v4's world is mirrored into iris's right-handed one when its camera
+// frame is left-handed (pbrt-v4's plain LookAt), so that the image is the same.
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "iris/scene/document.hpp"
+#include "iris/spectrum/blackbody.hpp"
+#include "iris/spectrum/color.hpp"
+#include "iris/spectrum/named.hpp"
+#include "iris/spectrum/rgb_sigmoid.hpp"
+
+namespace iris::scene {
+namespace {
+
+constexpr int max_include_depth = 32;
+constexpr double max_coordinate = 1e7;
+
+// ---- tokens ---------------------------------------------------------------------------
+
+struct location {
+    std::string file;
+    std::size_t line = 0, column = 0;
+};
+
+[[noreturn]] void fail(const location& at, const std::string& message) {
+    throw error(at.file, at.line, error::column{at.column}, message);
+}
+
+struct token {
+    enum class kind { word, string, number, open, close } type = kind::word;
+    std::string text;
+    double number = 0.0;
+    location at;
+};
+
+/// One file's text, read token by token.
+class tokenizer {
+public:
+    tokenizer(std::string text, std::string file, std::filesystem::path dir)
+        : m_text(std::move(text)), m_file(std::move(file)), m_dir(std::move(dir)) {}
+
+    const std::filesystem::path& dir() const noexcept { return m_dir; }
+    const std::string& file() const noexcept { return m_file; }
+
+    std::optional<token> next() {
+        skip_space();
+        if (m_pos >= m_text.size()) return std::nullopt;
+        token t;
+        t.at = here();
+        const char c = m_text[m_pos];
+        if (c == '[' || c == ']') {
+            t.type = c == '[' ? token::kind::open : token::kind::close;
+            t.text = std::string(1, c);
+            advance();
+            return t;
+        }
+        if (c == '"') {
+            t.type = token::kind::string;
+            advance();
+            for (;;) {
+                if (m_pos >= m_text.size()) fail(t.at, "unterminated string (a '\"' is missing)");
+                const char d = m_text[m_pos];
+                if (d == '\n') fail(t.at, "unterminated string (a string cannot span lines)");
+                advance();
+                if (d == '"') break;
+                if (d == '\\') {
+                    if (m_pos >= m_text.size()) fail(t.at, "unterminated string (a '\"' is missing)");
+                    const char e = m_text[m_pos];
+                    advance();
+                    switch (e) {
+                        case 'n': t.text += '\n'; break;
+                        case 't': t.text += '\t'; break;
+                        case '\\': t.text += '\\'; break;
+                        case '"': t.text += '"'; break;
+                        default: fail(here(), std::string("unknown escape '\\") + e + "' in a string");
+                    }
+                } else {
+                    t.text += d;
+                }
+            }
+            return t;
+        }
+        while (m_pos < m_text.size() && !is_space(m_text[m_pos]) && m_text[m_pos] != '"' && m_text[m_pos] != '[' &&
+               m_text[m_pos] != ']' && m_text[m_pos] != '#') {
+            t.text += m_text[m_pos];
+            advance();
+        }
+        const char f = t.text.front();
+        if (std::isdigit(static_cast<unsigned char>(f)) || f == '-' || f == '+' || f == '.') {
+            t.type = token::kind::number;
+            const char* b = t.text.data() + (f == '+' ? 1 : 0);
+            const char* e = t.text.data() + t.text.size();
+            const auto r = std::from_chars(b, e, t.number);
+            if (r.ec != std::errc() || r.ptr != e) fail(t.at, "'" + t.text + "' is not a number");
+            if (!std::isfinite(t.number)) fail(t.at, "'" + t.text + "' is not a finite number");
+        }
+        return t;
+    }
+
+private:
+    static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+    location here() const { return {m_file, m_line, m_column}; }
+    void advance() {
+        if (m_text[m_pos] == '\n') {
+            ++m_line;
+            m_column = 1;
+        } else {
+            ++m_column;
+        }
+        ++m_pos;
+    }
+    void skip_space() {
+        while (m_pos < m_text.size()) {
+            if (is_space(m_text[m_pos])) advance();
+            else if (m_text[m_pos] == '#')
+                while (m_pos < m_text.size() && m_text[m_pos] != '\n') advance();
+            else break;
+        }
+    }
+
+    std::string m_text, m_file;
+    std::filesystem::path m_dir;
+    std::size_t m_pos = 0, m_line = 1, m_column = 1;
+};
+
+std::string read_file(const std::filesystem::path& p, const location& at, const std::string& what, bool allowed) {
+    if (!allowed) fail(at, what + " '" + p.string() + "' not read: reading files is disabled");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) fail(at, what + " '" + p.string() + "' does not exist or is not a file");
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    if (!in && !in.eof()) fail(at, "cannot read " + what + " '" + p.string() + "'");
+    return s.str();
+}
+
+// ---- parameters -----------------------------------------------------------------------
+
+/// One `"type name" value(s)` of a directive.
+struct parameter {
+    std::string type, name;
+    std::vector<double> numbers;
+    std::vector<std::string> strings;
+    std::vector<bool> bools;
+    location at;
+    bool used = false;
+};
+
+/// A directive's parameters: every getter marks what it reads; `finish` refuses the rest.
+class parameters {
+public:
+    std::vector<parameter> list;
+    std::string directive;  ///< e.g. `Shape "sphere"`, for messages
+
+    parameter* find(std::string_view name) {
+        for (auto& p : list)
+            if (p.name == name) {
+                p.used = true;
+                return &p;
+            }
+        return nullptr;
+    }
+    const parameter& expect(parameter& p, std::initializer_list<std::string_view> types, std::size_t count) const {
+        if (std::find(types.begin(), types.end(), p.type) == types.end()) {
+            std::string expected;
+            for (auto t : types) expected += (expected.empty() ? "\"" : ", \"") + std::string(t) + " " + p.name + "\"";
+            fail(p.at, "parameter \"" + p.type + " " + p.name + "\" of " + directive + " has the wrong type; expected " + expected);
+        }
+        const std::size_t n = p.type == "string" || p.type == "texture" ? p.strings.size()
+                              : p.type == "bool"                       ? p.bools.size()
+                                                                       : p.numbers.size();
+        if (count > 0 && n != count)
+            fail(p.at, "parameter \"" + p.type + " " + p.name + "\" of " + directive + " takes " + std::to_string(count) +
+                           " value" + (count > 1 ? "s" : "") + ", got " + std::to_string(n));
+        return p;
+    }
+    double number(std::string_view name, double fallback, std::string_view type = "float") {
+        parameter* p = find(name);
+        if (!p) return fallback;
+        return expect(*p, {type}, 1).numbers[0];
+    }
+    int integer(std::string_view name, int fallback) {
+        parameter* p = find(name);
+        if (!p) return fallback;
+        const double v = expect(*p, {"integer"}, 1).numbers[0];
+        if (v != std::floor(v) || std::fabs(v) > 1e9) fail(p->at, "\"integer " + p->name + "\" must be an integer");
+        return static_cast<int>(v);
+    }
+    std::string string(std::string_view name, const std::string& fallback) {
+        parameter* p = find(name);
+        if (!p) return fallback;
+        return expect(*p, {"string"}, 1).strings[0];
+    }
+    bool boolean(std::string_view name, bool fallback) {
+        parameter* p = find(name);
+        if (!p) return fallback;
+        return expect(*p, {"bool"}, 1).bools[0];
+    }
+    glm::dvec3 point(std::string_view name, glm::dvec3 fallback) {
+        parameter* p = find(name);
+        if (!p) return fallback;
+        const auto& v = expect(*p, {"point3", "point", "vector3", "vector", "normal", "normal3"}, 3).numbers;
+        return {v[0], v[1], v[2]};
+    }
+    /// Refuse every parameter nothing read.
+    void finish() const {
+        for (const auto& p : list)
+            if (!p.used)
+                fail(p.at, "parameter \"" + p.type + " " + p.name + "\" of " + directive +
+                               " is not supported by iris's pbrt-v4 importer (docs/pbrt-import.md)");
+    }
+};
+
+// ---- spectra --------------------------------------------------------------------------
+
+enum class spectrum_use { albedo, unbounded, illuminant };
+
+/// A spectrum as a table over 360–830 nm at 1 nm (the CMF table's grid).
+template <class F>
+tabulated_spectrum tabulate(F&& f, outside mode = outside::zero) {
+    std::vector<double> l, v;
+    for (std::size_t i = 0; i < cie::cmf_samples; ++i) {
+        l.push_back(cie::cmf_lambda_min + static_cast<double>(i));
+        v.push_back(f(l.back()));
+    }
+    return {std::move(l), std::move(v), mode};
+}
+
+/// pbrt-v4's glass, metal and illuminant names, as iris's own data (docs/pbrt-import.md).
+struct named_pbrt {
+    std::string_view pbrt, iris;
+};
+constexpr std::array<named_pbrt, 7> pbrt_glasses{{{"glass-BK7", "N-BK7"},
+                                                  {"glass-BAF10", "N-BAF10"},
+                                                  {"glass-FK51A", "N-FK51A"},
+                                                  {"glass-LASF9", "N-LASF9"},
+                                                  {"glass-F5", "SF5"},
+                                                  {"glass-F10", "SF10"},
+                                                  {"glass-F11", "SF11"}}};
+constexpr std::array<named_pbrt, 2> pbrt_illuminants{{{"stdillum-D65", "D65"}, {"stdillum-A", "A"}}};
+
+struct spectrum_value {
+    std::string name;  ///< what the tools report ("rgb", "blackbody:3000", a named spectrum, "tabulated")
+    tabulated_spectrum table;
+    bool rgb_illuminant = false;  ///< an "rgb" light: its luminance is not divided out (pbrt-v4's rule)
+    std::optional<sellmeier_ior> glass;  ///< a named glass: iris's Sellmeier model of it
+    std::optional<double> constant;      ///< a "float" value
+};
+
+// ---- the parser -----------------------------------------------------------------------
+
+struct graphics_state {
+    glm::dmat4 ctm{1.0};
+    bool reverse_orientation = false;
+    std::optional<std::uint32_t> material;          ///< the current material (nullopt: pbrt's default)
+    std::optional<std::uint32_t> area_light;        ///< the current AreaLightSource's emitter
+};
+
+class importer {
+public:
+    importer(const std::string& source, const pbrt_import_options& o) : m_options(o) { m_doc.source = source; }
+
+    scene_document run(std::string text, const std::string& source, const std::filesystem::path& dir) {
+        m_files.emplace_back(std::move(text), source, dir);
+        std::filesystem::path stem = std::filesystem::path(source).stem();
+        m_doc.desc.name = stem.empty() ? "pbrt" : stem.string();
+        while (auto t = next()) directive(*t);
+        if (!m_stack.empty()) fail(m_stack.back().second, "AttributeBegin without its AttributeEnd");
+        if (m_object) fail(m_object_at, "ObjectBegin \"" + *m_object + "\" without its ObjectEnd");
+        if (!m_world) fail(m_end, "no WorldBegin: the file describes no scene");
+        if (m_doc.shapes.empty()) fail(m_end, "the scene has no shapes");
+        bool light = !m_doc.desc.lights.empty() || m_doc.desc.environment.has_value();
+        for (const auto& s : m_doc.shapes) light |= s.emitter.has_value();
+        if (!light) fail(m_end, "the scene has no light (no AreaLightSource on a shape, no LightSource)");
+        m_doc.desc.notes = std::move(m_notes);
+        return std::move(m_doc);
+    }
+
+private:
+    // -- tokens across included files
+    std::optional<token> next() {
+        if (m_peeked) return std::exchange(m_peeked, std::nullopt);
+        while (!m_files.empty()) {
+            if (auto t = m_files.back().next()) return t;
+            m_end = {m_files.back().file(), 0, 0};
+            m_files.pop_back();
+            if (!m_include_names.empty() && m_files.size() < m_include_names.size() + 1) m_include_names.pop_back();
+        }
+        return std::nullopt;
+    }
+    std::optional<token> peek() {
+        if (!m_peeked) m_peeked = next();
+        return m_peeked;
+    }
+    token expect(token::kind k, const location& after, const std::string& what) {
+        auto t = next();
+        if (!t) fail(after, "the file ends where " + what + " was expected");
+        if (t->type != k) fail(t->at, "expected " + what + ", found '" + t->text + "'");
+        return *t;
+    }
+    std::string quoted(const location& after, const std::string& what) {
+        return expect(token::kind::string, after, what + " (a quoted string)").text;
+    }
+    double number(const location& after, const std::string& what) {
+        return expect(token::kind::number, after, what + " (a number)").number;
+    }
+    std::vector<double> numbers(std::size_t n, const location& at, const std::string& what) {
+        std::vector<double> v;
+        auto t = peek();
+        const bool bracket = t && t->type == token::kind::open;
+        if (bracket) next();
+        for (std::size_t i = 0; i < n; ++i) v.push_back(number(at, what));
+        if (bracket) expect(token::kind::close, at, "']' after " + std::to_string(n) + " numbers of " + what);
+        return v;
+    }
+
+    /// The parameter list after a directive's positional arguments.
+    parameters read_parameters(const std::string& directive) {
+        parameters ps;
+        ps.directive = directive;
+        for (;;) {
+            auto t = peek();
+            if (!t || t->type != token::kind::string) break;
+            next();
+            parameter p;
+            p.at = t->at;
+            std::istringstream decl(t->text);
+            std::string extra;
+            if (!(decl >> p.type >> p.name) || (decl >> extra))
+                fail(t->at, "expected a parameter declaration \"TYPE NAME\", found \"" + t->text + "\"");
+            static const std::set<std::string> types{"integer", "float",  "point2", "vector2", "point3", "vector3",
+                                                     "normal",  "normal3", "point", "vector",  "bool",   "string",
+                                                     "texture", "rgb",    "spectrum", "blackbody", "color"};
+            if (!types.count(p.type)) fail(t->at, "unknown parameter type '" + p.type + "' in \"" + t->text + "\"");
+            for (const auto& q : ps.list)
+                if (q.name == p.name) fail(t->at, "parameter '" + p.name + "' of " + directive + " is given twice");
+            auto value = [&](const token& v) {
+                if (p.type == "string" || p.type == "texture" || (p.type == "spectrum" && v.type == token::kind::string)) {
+                    if (v.type != token::kind::string) fail(v.at, "\"" + t->text + "\" takes quoted strings, found '" + v.text + "'");
+                    p.strings.push_back(v.text);
+                } else if (p.type == "bool") {
+                    const std::string& s = v.text;
+                    if (s != "true" && s != "false") fail(v.at, "\"" + t->text + "\" takes true or false, found '" + s + "'");
+                    p.bools.push_back(s == "true");
+                } else {
+                    if (v.type != token::kind::number) fail(v.at, "\"" + t->text + "\" takes numbers, found '" + v.text + "'");
+                    p.numbers.push_back(v.number);
+                }
+            };
+            auto v = next();
+            if (!v) fail(t->at, "the file ends where the value of \"" + t->text + "\" was expected");
+            if (v->type == token::kind::open) {
+                for (;;) {
+                    auto w = next();
+                    if (!w) fail(v->at, "the file ends inside the list of \"" + t->text + "\" (a ']' is missing)");
+                    if (w->type == token::kind::close) break;
+                    if (w->type == token::kind::open) fail(w->at, "a '[' inside the list of \"" + t->text + "\"");
+                    value(*w);
+                }
+            } else {
+                value(*v);
+            }
+            if (p.numbers.empty() && p.strings.empty() && p.bools.empty())
+                fail(v->at, "\"" + t->text + "\" has no value");
+            ps.list.push_back(std::move(p));
+        }
+        return ps;
+    }
+
+    void note(const location& at, const std::string& message) {
+        if (m_options.strict) fail(at, message + " (an error under --strict)");
+        m_notes.push_back(at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + message);
+    }
+
+    // -- transforms
+    void apply(const glm::dmat4& m) { m_state.ctm = m_state.ctm * m; }
+
+    glm::dmat4 world(const glm::dmat4& m) const { return m_mirror * m; }
+
+    void require_world(const token& t, bool world) {
+        if (world && !m_world) fail(t.at, t.text + " is allowed only after WorldBegin");
+        if (!world && m_world) fail(t.at, t.text + " is allowed only before WorldBegin");
+    }
+
+    // -- directives
+    void directive(const token& t) {
+        if (t.type != token::kind::word) fail(t.at, "expected a directive, found '" + t.text + "'");
+        const std::string& d = t.text;
+        if (d == "Translate") {
+            const auto v = numbers(3, t.at, "Translate's x y z");
+            apply(glm::translate(glm::dmat4(1.0), glm::dvec3(v[0], v[1], v[2])));
+        } else if (d == "Scale") {
+            const auto v = numbers(3, t.at, "Scale's x y z");
+            apply(glm::scale(glm::dmat4(1.0), glm::dvec3(v[0], v[1], v[2])));
+        } else if (d == "Rotate") {
+            const auto v = numbers(4, t.at, "Rotate's angle x y z");
+            const glm::dvec3 axis(v[1], v[2], v[3]);
+            if (!(glm::length(axis) > 0.0)) fail(t.at, "Rotate's axis is zero");
+            apply(glm::rotate(glm::dmat4(1.0), glm::radians(v[0]), glm::normalize(axis)));
+        } else if (d == "LookAt") {
+            const auto v = numbers(9, t.at, "LookAt's eye, look and up");
+            apply(look_at(t.at, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}));
+        } else if (d == "Transform" || d == "ConcatTransform") {
+            const auto v = numbers(16, t.at, d + "'s 16 numbers");
+            glm::dmat4 m;
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) m[c][r] = v[static_cast<std::size_t>(4 * c + r)];  // pbrt-v4: column by column
+            if (d == "Transform") m_state.ctm = m;
+            else apply(m);
+        } else if (d == "Identity") {
+            m_state.ctm = glm::dmat4(1.0);
+        } else if (d == "CoordinateSystem") {
+            m_coordinate_systems[quoted(t.at, "the coordinate system's name")] = m_state.ctm;
+        } else if (d == "CoordSysTransform") {
+            const std::string n = quoted(t.at, "the coordinate system's name");
+            const auto it = m_coordinate_systems.find(n);
+            if (it == m_coordinate_systems.end()) fail(t.at, "unknown coordinate system '" + n + "'");
+            m_state.ctm = it->second;
+        } else if (d == "ReverseOrientation") {
+            m_state.reverse_orientation = !m_state.reverse_orientation;
+        } else if (d == "AttributeBegin" || d == "TransformBegin") {
+            if (d == "TransformBegin") note(t.at, "TransformBegin is deprecated in pbrt-v4: read as AttributeBegin for the transform");
+            m_stack.push_back({m_state, t.at});
+        } else if (d == "AttributeEnd" || d == "TransformEnd") {
+            if (m_stack.empty()) fail(t.at, d + " without a matching AttributeBegin");
+            if (d == "TransformEnd") m_state.ctm = m_stack.back().first.ctm;
+            else m_state = m_stack.back().first;
+            m_stack.pop_back();
+        } else if (d == "ActiveTransform") {
+            const auto w = expect(token::kind::word, t.at, "All, StartTime or EndTime");
+            if (w.text != "All") fail(w.at, "ActiveTransform " + w.text + ": motion blur is not supported (only All)");
+        } else if (d == "TransformTimes") {
+            numbers(2, t.at, "TransformTimes's start and end");
+            note(t.at, "TransformTimes ignored (iris renders no motion blur)");
+        } else if (d == "Option") {
+            const std::string n = quoted(t.at, "the option's declaration");
+            auto v = next();
+            if (v && v->type == token::kind::open)
+                while ((v = next()) && v->type != token::kind::close) {
+                }
+            note(t.at, "Option \"" + n + "\" ignored");
+        } else if (d == "ColorSpace") {
+            const std::string n = quoted(t.at, "the colour space's name");
+            if (n != "srgb") fail(t.at, "ColorSpace \"" + n + "\": only \"srgb\" is supported");
+        } else if (d == "Camera") {
+            require_world(t, false);
+            camera(t);
+        } else if (d == "Film") {
+            require_world(t, false);
+            film(t);
+        } else if (d == "Sampler") {
+            require_world(t, false);
+            const std::string type = quoted(t.at, "the sampler's type");
+            auto ps = read_parameters("Sampler \"" + type + "\"");
+            m_doc.desc.default_spp = ps.integer("pixelsamples", 16);
+            if (m_doc.desc.default_spp < 1) fail(t.at, "\"integer pixelsamples\" must be at least 1");
+            for (auto& p : ps.list)
+                if (!p.used) {
+                    p.used = true;
+                    note(p.at, "Sampler parameter \"" + p.name + "\" ignored (iris-render --sampler chooses iris's sampler)");
+                }
+            if (type != "zsobol") note(t.at, "Sampler \"" + type + "\": iris uses its own sampler (--sampler); its pixelsamples is the default spp");
+        } else if (d == "Integrator") {
+            require_world(t, false);
+            const std::string type = quoted(t.at, "the integrator's type");
+            auto ps = read_parameters("Integrator \"" + type + "\"");
+            m_doc.desc.default_max_depth = ps.integer("maxdepth", 5);
+            if (m_doc.desc.default_max_depth < 0) fail(t.at, "\"integer maxdepth\" must be at least 0");
+            for (auto& p : ps.list)
+                if (!p.used) {
+                    p.used = true;
+                    note(p.at, "Integrator parameter \"" + p.name + "\" ignored");
+                }
+            note(t.at, "Integrator \"" + type + "\": iris renders with its own estimator (iris-render --estimator); maxdepth is the default max depth");
+        } else if (d == "PixelFilter") {
+            require_world(t, false);
+            const std::string type = quoted(t.at, "the filter's type");
+            auto ps = read_parameters("PixelFilter \"" + type + "\"");
+            const double rx = ps.number("xradius", type == "box" ? 0.5 : 1.5), ry = ps.number("yradius", type == "box" ? 0.5 : 1.5);
+            for (auto& p : ps.list) p.used = true;
+            if (type != "box" || rx != 0.5 || ry != 0.5)
+                note(t.at, "PixelFilter \"" + type + "\" approximated by iris's pixel box (each sample counts in its own pixel)");
+        } else if (d == "Accelerator") {
+            const std::string type = quoted(t.at, "the accelerator's type");
+            auto ps = read_parameters("Accelerator");
+            for (auto& p : ps.list) p.used = true;
+            note(t.at, "Accelerator \"" + type + "\" ignored (iris uses Embree)");
+        } else if (d == "WorldBegin") {
+            require_world(t, false);
+            world_begin(t);
+        } else if (d == "WorldEnd") {
+            note(t.at, "WorldEnd is not a pbrt-v4 directive (pbrt-v3's): ignored");
+        } else if (d == "Include" || d == "Import") {
+            include(t);
+        } else if (d == "MakeNamedMaterial") {
+            require_world(t, true);
+            const std::string n = quoted(t.at, "the material's name");
+            if (m_named_materials.count(n)) fail(t.at, "material '" + n + "' is defined twice");
+            auto ps = read_parameters("MakeNamedMaterial \"" + n + "\"");
+            parameter* type = ps.find("type");
+            if (!type) fail(t.at, "MakeNamedMaterial \"" + n + "\" has no \"string type\"");
+            const std::string ty = ps.expect(*type, {"string"}, 1).strings[0];
+            m_named_materials[n] = material(ty, ps, n, t.at);
+        } else if (d == "Material") {
+            require_world(t, true);
+            const std::string ty = quoted(t.at, "the material's type");
+            auto ps = read_parameters("Material \"" + ty + "\"");
+            m_state.material = material(ty, ps, "material." + std::to_string(m_doc.desc.materials.size()), t.at);
+        } else if (d == "NamedMaterial") {
+            require_world(t, true);
+            const std::string n = quoted(t.at, "the material's name");
+            const auto it = m_named_materials.find(n);
+            if (it == m_named_materials.end()) fail(t.at, "unknown material '" + n + "' (no MakeNamedMaterial before it)");
+            m_state.material = it->second;
+        } else if (d == "Texture") {
+            require_world(t, true);
+            const std::string n = quoted(t.at, "the texture's name");
+            fail(t.at, "Texture \"" + n + "\": textures are not supported by iris's pbrt-v4 importer yet (docs/pbrt-import.md)");
+        } else if (d == "LightSource") {
+            require_world(t, true);
+            light_source(t);
+        } else if (d == "AreaLightSource") {
+            require_world(t, true);
+            area_light(t);
+        } else if (d == "Shape") {
+            require_world(t, true);
+            shape(t);
+        } else if (d == "ObjectBegin") {
+            require_world(t, true);
+            if (m_object) fail(t.at, "ObjectBegin inside ObjectBegin \"" + *m_object + "\"");
+            const std::string n = quoted(t.at, "the object's name");
+            if (m_objects.count(n)) fail(t.at, "object '" + n + "' is defined twice");
+            m_object = n;
+            m_object_at = t.at;
+            m_objects[n];
+            m_stack.push_back({m_state, t.at});
+        } else if (d == "ObjectEnd") {
+            if (!m_object) fail(t.at, "ObjectEnd without ObjectBegin");
+            m_object.reset();
+            m_state = m_stack.back().first;
+            m_stack.pop_back();
+        } else if (d == "ObjectInstance") {
+            require_world(t, true);
+            const std::string n = quoted(t.at, "the object's name");
+            const auto it = m_objects.find(n);
+            if (it == m_objects.end()) fail(t.at, "unknown object '" + n + "' (no ObjectBegin before it)");
+            if (m_object) fail(t.at, "ObjectInstance inside ObjectBegin");
+            for (shape_spec s : it->second) {  // its orientation is the definition's
+                s.transform = glm::mat4(world(m_state.ctm) * glm::dmat4(s.transform));
+                s.name = n + "/" + s.name;
+                m_doc.shapes.push_back(std::move(s));
+            }
+        } else if (d == "MakeNamedMedium" || d == "MediumInterface") {
+            if (d == "MediumInterface") {
+                const std::string a = quoted(t.at, "the inside medium's name");
+                std::string b = a;
+                if (auto p = peek(); p && p->type == token::kind::string) b = next()->text;
+                if (a.empty() && b.empty()) return;  // no media: what iris renders
+            }
+            fail(t.at, d + ": participating media are not supported yet (docs/pbrt-import.md)");
+        } else if (d == "Attribute") {
+            fail(t.at, "Attribute: default parameters per target are not supported (docs/pbrt-import.md)");
+        } else {
+            fail(t.at, "unknown directive '" + d + "'");
+        }
+    }
+
+    glm::dmat4 look_at(const location& at, glm::dvec3 eye, glm::dvec3 look, glm::dvec3 up) {
+        const glm::dvec3 dir = look - eye;
+        if (!(glm::length(dir) > 0.0)) fail(at, "LookAt: the eye and the look-at point are the same");
+        const glm::dvec3 d = glm::normalize(dir);
+        if (!(glm::length(glm::cross(glm::normalize(up), d)) > 1e-9)) fail(at, "LookAt: the up vector is parallel to the view direction");
+        // pbrt-v4's LookAt: camera x = up × dir (a left-handed camera frame), y, z = dir
+        const glm::dvec3 right = glm::normalize(glm::cross(glm::normalize(up), d));
+        const glm::dvec3 new_up = glm::cross(d, right);
+        glm::dmat4 world_from_camera(1.0);
+        world_from_camera[0] = glm::dvec4(right, 0.0);
+        world_from_camera[1] = glm::dvec4(new_up, 0.0);
+        world_from_camera[2] = glm::dvec4(d, 0.0);
+        world_from_camera[3] = glm::dvec4(eye, 1.0);
+        return glm::inverse(world_from_camera);
+    }
+
+    void camera(const token& t) {
+        const std::string type = quoted(t.at, "the camera's type");
+        auto ps = read_parameters("Camera \"" + type + "\"");
+        if (type != "perspective") fail(t.at, "Camera \"" + type + "\": only \"perspective\" is supported");
+        m_camera_from_world = m_state.ctm;
+        m_coordinate_systems["camera"] = glm::inverse(m_state.ctm);
+        m_fov = ps.number("fov", 90.0);
+        if (!(m_fov > 0.0 && m_fov < 180.0)) fail(t.at, "\"float fov\" must be in (0, 180) degrees");
+        if (ps.number("lensradius", 0.0) > 0.0) {
+            ps.find("focaldistance");
+            note(t.at, "Camera \"lensradius\": iris's camera is a pinhole (no depth of field)");
+        }
+        ps.find("focaldistance");
+        if (auto* p = ps.find("shutteropen")) p->used = true;
+        if (auto* p = ps.find("shutterclose")) p->used = true;
+        ps.finish();
+        m_camera_at = t.at;
+    }
+
+    void film(const token& t) {
+        const std::string type = quoted(t.at, "the film's type");
+        auto ps = read_parameters("Film \"" + type + "\"");
+        if (type != "rgb" && type != "gbuffer" && type != "spectral") fail(t.at, "Film \"" + type + "\": unknown film type");
+        m_doc.desc.camera.width = ps.integer("xresolution", 1280);
+        m_doc.desc.camera.height = ps.integer("yresolution", 720);
+        if (m_doc.desc.camera.width < 1 || m_doc.desc.camera.height < 1 || m_doc.desc.camera.width > 16384 ||
+            m_doc.desc.camera.height > 16384)
+            fail(t.at, "the film's resolution must be 1-16384 pixels a side");
+        if (parameter* p = ps.find("cropwindow")) {
+            const auto& c = ps.expect(*p, {"float"}, 4).numbers;
+            if (c[0] != 0.0 || c[1] != 1.0 || c[2] != 0.0 || c[3] != 1.0)
+                fail(p->at, "a crop window is not supported (render the whole image and crop it: iris-image crop)");
+        }
+        if (parameter* p = ps.find("pixelbounds")) fail(p->at, "pixel bounds are not supported (iris-image crop)");
+        for (auto& p : ps.list)
+            if (!p.used) {
+                p.used = true;
+                note(p.at, "Film parameter \"" + p.name + "\" ignored (iris writes linear sRGB to iris-render -o)");
+            }
+    }
+
+    void world_begin(const token& t) {
+        m_world = true;
+        m_coordinate_systems["world"] = glm::dmat4(1.0);
+        // the camera: pbrt-v4's camera-from-world at `Camera` (identity if there was none)
+        const glm::dmat4 w = glm::inverse(m_camera_from_world);
+        const glm::dvec3 eye(w[3]), right = glm::normalize(glm::dvec3(w * glm::dvec4(1, 0, 0, 0))),
+            up = glm::normalize(glm::dvec3(w * glm::dvec4(0, 1, 0, 0))), dir = glm::normalize(glm::dvec3(w * glm::dvec4(0, 0, 1, 0)));
+        // iris's image right is dir × up: mirror the world when pbrt-v4's frame is the other way
+        if (glm::dot(glm::cross(dir, up), right) < 0.0) m_mirror = glm::scale(glm::dmat4(1.0), glm::dvec3(-1.0, 1.0, 1.0));
+        const glm::dvec3 e = m_mirror * glm::dvec4(eye, 1.0), d = m_mirror * glm::dvec4(dir, 0.0), u = m_mirror * glm::dvec4(up, 0.0);
+        auto& c = m_doc.desc.camera;
+        c.position = glm::vec3(e);
+        c.look_at = glm::vec3(e + d);
+        c.up = glm::vec3(u);
+        // pbrt-v4's fov spans the shorter side, iris's the height
+        double fov = m_fov;
+        if (c.width < c.height) fov = std::atan(std::tan(fov * std::numbers::pi / 360.0) * c.height / c.width) * 360.0 / std::numbers::pi;
+        c.fov_y_degrees = static_cast<float>(fov);
+        m_state = graphics_state{};
+        m_stack.clear();
+        (void)t;
+    }
+
+    void include(const token& t) {
+        const std::string n = quoted(t.at, "the file to include");
+        if (static_cast<int>(m_files.size()) > max_include_depth) fail(t.at, "includes nested more than 32 deep");
+        std::filesystem::path p(n);
+        if (p.is_relative()) p = m_files.back().dir() / p;
+        if (p.extension() == ".gz") fail(t.at, "compressed files are not supported: '" + n + "'");
+        for (const auto& f : m_files)
+            if (f.file() == p.string()) fail(t.at, "'" + n + "' includes itself (through " + m_files.back().file() + ")");
+        std::string text = read_file(p, t.at, "included file", m_options.read_files);
+        m_files.emplace_back(std::move(text), p.string(), p.parent_path());
+    }
+
+    // -- spectra of parameters
+    std::optional<spectrum_value> spectrum(parameters& ps, std::string_view name, spectrum_use use) {
+        parameter* p = ps.find(name);
+        if (!p) return std::nullopt;
+        spectrum_value v;
+        if (p->type == "texture") fail(p->at, "\"texture " + p->name + "\": textures are not supported yet (docs/pbrt-import.md)");
+        if (p->type == "float") {
+            const double x = ps.expect(*p, {"float"}, 1).numbers[0];
+            v.constant = x;
+            v.name = "constant";
+            v.table = tabulate([&](double) { return x; }, outside::clamp);
+            return v;
+        }
+        if (p->type == "rgb" || p->type == "color") {
+            const auto& c = ps.expect(*p, {"rgb", "color"}, 3).numbers;
+            if (c[0] < 0.0 || c[1] < 0.0 || c[2] < 0.0) fail(p->at, "\"rgb " + p->name + "\" has a negative component");
+            const rgb col{c[0], c[1], c[2]};
+            v.name = "rgb";
+            if (use == spectrum_use::albedo) {
+                if (c[0] > 1.0 || c[1] > 1.0 || c[2] > 1.0) fail(p->at, "\"rgb " + p->name + "\" is a reflectance: components must be at most 1");
+                const auto s = rgb_to_sigmoid(col);
+                v.table = tabulate([&](double l) { return s(l); }, outside::clamp);
+            } else if (use == spectrum_use::illuminant) {
+                const auto e = rgb_illuminant::from_linear_srgb(col);
+                v.table = tabulate([&](double l) { return e(l); });
+                v.rgb_illuminant = true;
+            } else {
+                fail(p->at, "\"rgb " + p->name + "\": an RGB value is not supported here (give a spectrum)");
+            }
+            return v;
+        }
+        if (p->type == "blackbody") {
+            const double k = ps.expect(*p, {"blackbody"}, 1).numbers[0];
+            if (!(k >= 1.0 && k <= 1e6)) fail(p->at, "\"blackbody " + p->name + "\" must be a temperature in 1-1e6 K");
+            const blackbody_spectrum b(k);
+            v.name = "blackbody:" + reader_number(k);
+            v.table = tabulate([&](double l) { return b(l); });
+            return v;
+        }
+        if (p->type != "spectrum") ps.expect(*p, {"spectrum", "rgb", "blackbody", "float"}, 0);
+        if (!p->strings.empty()) {
+            if (p->strings.size() != 1) fail(p->at, "\"spectrum " + p->name + "\" takes one name");
+            const std::string& n = p->strings[0];
+            for (const auto& g : pbrt_glasses)
+                if (g.pbrt == n) {
+                    const auto glass = find_glass(g.iris);
+                    v.glass = glass->sellmeier;
+                    v.name = std::string(g.iris);
+                    v.table = tabulate([&](double l) { return glass->sellmeier.n(l); }, outside::clamp);
+                    return v;
+                }
+            for (const auto& i : pbrt_illuminants)
+                if (i.pbrt == n) {
+                    v.name = std::string(i.iris);
+                    v.table = find_illuminant(i.iris)->spectrum();
+                    return v;
+                }
+            if (n.rfind("metal-", 0) == 0) {
+                const auto dash = n.rfind('-');
+                const std::string metal = n.substr(6, dash - 6), part = n.substr(dash + 1);
+                if (const auto m = find_metal(metal); m && (part == "eta" || part == "k")) {
+                    v.name = n;
+                    v.table = part == "eta" ? m->eta_spectrum() : m->k_spectrum();
+                    return v;
+                }
+            }
+            if (n.size() > 4 && n.substr(n.size() - 4) == ".spd") return spd_file(*p, n);
+            fail(p->at, "unknown named spectrum '" + n + "' (iris knows glass-BK7, glass-BAF10, glass-FK51A, glass-LASF9, "
+                        "glass-F5, glass-F10, glass-F11, metal-{Ag,Al,Au,Cu,CuZn}-{eta,k}, stdillum-D65, stdillum-A, "
+                        "and .spd files)");
+        }
+        return inline_spectrum(p->numbers, p->at, "\"spectrum " + p->name + "\"", v);
+    }
+
+    static std::string reader_number(double x) {
+        std::ostringstream s;
+        s << x;
+        return s.str();
+    }
+
+    spectrum_value inline_spectrum(const std::vector<double>& xs, const location& at, const std::string& what, spectrum_value v) {
+        if (xs.size() < 4 || xs.size() % 2 != 0) fail(at, what + " needs (wavelength, value) pairs, at least two");
+        std::vector<double> l, y;
+        for (std::size_t i = 0; i < xs.size(); i += 2) {
+            if (!l.empty() && !(xs[i] > l.back())) fail(at, what + ": the wavelengths must increase");
+            if (!(xs[i] > 0.0 && xs[i] < 1e5)) fail(at, what + ": a wavelength must be in (0, 1e5) nm");
+            l.push_back(xs[i]);
+            y.push_back(xs[i + 1]);
+        }
+        v.name = "tabulated";
+        v.table = tabulated_spectrum(std::move(l), std::move(y));  // 0 outside the list, as pbrt-v4's
+        return v;
+    }
+
+    spectrum_value spd_file(const parameter& p, const std::string& n) {
+        std::filesystem::path path(n);
+        if (path.is_relative()) path = m_files.back().dir() / path;
+        const std::string text = read_file(path, p.at, "spectrum file", m_options.read_files);
+        std::vector<double> xs;
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line)) {
+            if (const auto h = line.find('#'); h != std::string::npos) line.resize(h);
+            std::istringstream ls(line);
+            std::string w;
+            while (ls >> w) {
+                double x = 0.0;
+                const auto r = std::from_chars(w.data(), w.data() + w.size(), x);
+                if (r.ec != std::errc() || r.ptr != w.data() + w.size() || !std::isfinite(x))
+                    fail(p.at, "spectrum file '" + n + "': '" + w + "' is not a number");
+                xs.push_back(x);
+            }
+        }
+        spectrum_value v = inline_spectrum(xs, p.at, "spectrum file '" + n + "'", {});
+        v.name = path.filename().string();
+        return v;
+    }
+
+    /// iris's radiance of a pbrt-v4 light: scale·S/Y(S), or scale·E_rgb for an "rgb" one.
+    tabulated_spectrum light_radiance(const spectrum_value& s, double scale, const location& at) {
+        for (double v : s.table.values())
+            if (v < 0.0) fail(at, "the light's spectrum is negative somewhere (" + reader_number(v) + ")");
+        if (s.rgb_illuminant) return s.table.scaled(scale);
+        const double y = luminance(s.table);
+        if (!(y > 0.0)) fail(at, "the light's spectrum has no luminance (its Y over 360-830 nm is 0)");
+        return s.table.scaled(scale / y);
+    }
+
+    double light_scale(parameters& ps, const location& at) {
+        const double scale = ps.number("scale", 1.0);
+        if (!(scale >= 0.0)) fail(at, "\"float scale\" must be at least 0");
+        if (ps.find("power")) fail(at, "\"power\" is not supported yet: give \"scale\" (docs/pbrt-import.md)");
+        if (ps.find("illuminance")) fail(at, "\"illuminance\" is not supported yet: give \"scale\" (docs/pbrt-import.md)");
+        return scale;
+    }
+
+    std::uint32_t add_emitter(const std::string& name, tabulated_spectrum radiance, bool two_sided) {
+        m_doc.desc.emitters.push_back({name, std::move(radiance), two_sided});
+        emitter_spec e;
+        e.name = "emitter." + std::to_string(m_doc.emitters.size());
+        m_doc.emitters.push_back(e);
+        return static_cast<std::uint32_t>(m_doc.desc.emitters.size() - 1);
+    }
+
+    // -- materials
+    float roughness(parameters& ps, bool remap_default, const location& at) {
+        const double r = ps.number("roughness", 0.0);
+        const double u = ps.number("uroughness", r), v = ps.number("vroughness", r);
+        const bool remap = ps.boolean("remaproughness", remap_default);
+        if (u < 0.0 || v < 0.0) fail(at, "a roughness must be at least 0");
+        if (u != v) note(at, "anisotropic roughness (" + reader_number(u) + ", " + reader_number(v) + ") approximated by its mean: iris's GGX is isotropic");
+        const double x = 0.5 * (u + v);
+        return static_cast<float>(remap ? std::sqrt(x) : x);  // pbrt-v4's RoughnessToAlpha: √roughness
+    }
+
+    std::uint32_t material(const std::string& type, parameters& ps, const std::string& name, const location& at) {
+        auto reflectance = [&](const char* param, double fallback) {
+            auto s = spectrum(ps, param, spectrum_use::albedo);
+            if (!s) return tabulate([&](double) { return fallback; }, outside::clamp);
+            for (double x : s->table.values())
+                if (x < 0.0 || x > 1.0) fail(at, std::string("\"") + param + "\" must lie in [0, 1] at every wavelength");
+            return s->table;
+        };
+        material_desc m;
+        if (type == "diffuse") {
+            m = material::diffuse{reflectance("reflectance", 0.5)};
+        } else if (type == "coateddiffuse") {
+            m = material::diffuse{reflectance("reflectance", 0.5)};
+            for (const char* p : {"roughness", "uroughness", "vroughness", "thickness", "eta", "albedo", "g", "maxdepth",
+                                  "nsamples", "remaproughness"})
+                if (parameter* q = ps.find(p)) (void)q;
+            note(at, "material '" + name + "': coateddiffuse approximated by its diffuse base (iris has no coated materials yet)");
+        } else if (type == "dielectric" || type == "thindielectric") {
+            if (type == "thindielectric") fail(at, "thindielectric is not supported yet (docs/pbrt-import.md)");
+            material::dielectric d;
+            if (auto e = spectrum(ps, "eta", spectrum_use::unbounded)) {
+                if (e->constant) d.ior = constant_ior{*e->constant};
+                else if (e->glass) d.ior = *e->glass;
+                else d.ior = tabulated_ior{tabulated_spectrum(std::vector<double>(e->table.wavelengths().begin(), e->table.wavelengths().end()),
+                                                              std::vector<double>(e->table.values().begin(), e->table.values().end()),
+                                                              outside::clamp)};
+            }
+            for (double l = 360.0; l <= 830.0; l += 1.0) {
+                const double n = refractive_index(d.ior, l);
+                if (!(n >= 1.0 && n <= 10.0))
+                    fail(at, "material '" + name + "': eta must lie in [1, 10] at 360-830 nm, it is " + reader_number(n) + " at " + reader_number(l) + " nm");
+            }
+            d.roughness = roughness(ps, true, at);
+            m = d;
+        } else if (type == "conductor" || type == "coatedconductor") {
+            material::conductor c;
+            const char* eta_name = type == "conductor" ? "eta" : "conductor.eta";
+            const char* k_name = type == "conductor" ? "k" : "conductor.k";
+            if (ps.find("reflectance") || ps.find("conductor.reflectance"))
+                fail(at, "material '" + name + "': a conductor given by \"reflectance\" is not supported (give eta and k)");
+            auto eta = spectrum(ps, eta_name, spectrum_use::unbounded);
+            auto k = spectrum(ps, k_name, spectrum_use::unbounded);
+            material::conductor_ior ior;
+            ior.name = eta ? eta->name : "Cu";
+            ior.eta = eta ? eta->table : find_metal("Cu")->eta_spectrum();  // pbrt-v4's default: copper
+            ior.k = k ? k->table : find_metal("Cu")->k_spectrum();
+            for (double l = 360.0; l <= 830.0; l += 1.0)
+                if (!(ior.eta(l) > 0.0) || ior.k(l) < 0.0)
+                    fail(at, "material '" + name + "': eta must be > 0 and k ≥ 0 at 360-830 nm");
+            // its reflectance at normal incidence stands for it where one spectrum is needed (the tools)
+            c.reflectance = tabulate(
+                [&](double l) {
+                    const double e = ior.eta(l), k2 = ior.k(l) * ior.k(l);
+                    return ((e - 1.0) * (e - 1.0) + k2) / ((e + 1.0) * (e + 1.0) + k2);
+                },
+                outside::clamp);
+            c.ior = std::move(ior);
+            if (type == "coatedconductor") {
+                const double r = ps.number("conductor.roughness", 0.0);
+                const double u = ps.number("conductor.uroughness", r), v = ps.number("conductor.vroughness", r);
+                const bool remap = ps.boolean("remaproughness", true);
+                c.roughness = static_cast<float>(remap ? std::sqrt(0.5 * (u + v)) : 0.5 * (u + v));
+                for (const char* p : {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta",
+                                      "thickness", "albedo", "g", "maxdepth", "nsamples"})
+                    ps.find(p);
+                note(at, "material '" + name + "': coatedconductor approximated by its conductor base (iris has no coated materials yet)");
+            } else {
+                c.roughness = roughness(ps, true, at);
+            }
+            m = c;
+        } else {
+            fail(at, "material type '" + type + "' is not supported (iris: diffuse, dielectric, conductor; coateddiffuse and "
+                     "coatedconductor approximated)");
+        }
+        if (parameter* p = ps.find("displacement")) fail(p->at, "displacement is not supported");
+        if (parameter* p = ps.find("normalmap")) fail(p->at, "normal maps are not supported");
+        ps.find("type");
+        ps.finish();
+        m_doc.desc.materials.push_back(std::move(m));
+        m_doc.desc.material_names.push_back(name);
+        return static_cast<std::uint32_t>(m_doc.desc.materials.size() - 1);
+    }
+
+    std::uint32_t current_material() {
+        if (m_state.material) return *m_state.material;
+        if (!m_default_material) {
+            m_doc.desc.materials.push_back(material::diffuse{tabulate([](double) { return 0.5; }, outside::clamp)});
+            m_doc.desc.material_names.push_back("default-diffuse");
+            m_default_material = static_cast<std::uint32_t>(m_doc.desc.materials.size() - 1);
+        }
+        return *m_default_material;
+    }
+
+    // -- lights
+    void area_light(const token& t) {
+        const std::string type = quoted(t.at, "the area light's type");
+        auto ps = read_parameters("AreaLightSource \"" + type + "\"");
+        if (type != "diffuse") fail(t.at, "AreaLightSource \"" + type + "\": only \"diffuse\" is supported");
+        if (ps.find("filename")) fail(t.at, "an image on an area light is not supported");
+        const double scale = light_scale(ps, t.at);
+        const bool two_sided = ps.boolean("twosided", false);
+        auto l = spectrum(ps, "L", spectrum_use::illuminant);
+        if (!l) {
+            l = spectrum_value{};
+            l->name = "D65";
+            l->table = find_illuminant("D65")->spectrum();
+        }
+        ps.finish();
+        m_state.area_light = add_emitter(l->name, light_radiance(*l, scale, t.at), two_sided);
+    }
+
+    void light_source(const token& t) {
+        const std::string type = quoted(t.at, "the light's type");
+        auto ps = read_parameters("LightSource \"" + type + "\"");
+        const double scale = light_scale(ps, t.at);
+        const glm::dmat4 m = world(m_state.ctm);
+        auto spd = [&](const char* name) {
+            auto s = spectrum(ps, name, spectrum_use::illuminant);
+            if (!s) {
+                s = spectrum_value{};
+                s->name = "D65";
+                s->table = find_illuminant("D65")->spectrum();
+            }
+            return *s;
+        };
+        if (type == "point") {
+            const auto s = spd("I");
+            const glm::dvec3 from = ps.point("from", {0, 0, 0});
+            ps.finish();
+            const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
+            m_doc.desc.lights.push_back(light::point{glm::vec3(m * glm::dvec4(from, 1.0)), e});
+        } else if (type == "spot") {
+            const auto s = spd("I");
+            const glm::dvec3 from = ps.point("from", {0, 0, 0}), to = ps.point("to", {0, 0, 1});
+            const double cone = ps.number("coneangle", 30.0), delta = ps.number("conedeltaangle", 5.0);
+            ps.finish();
+            if (!(cone > 0.0 && cone <= 180.0) || !(delta >= 0.0 && delta < cone))
+                fail(t.at, "a spot light needs 0 < coneangle <= 180 and 0 <= conedeltaangle < coneangle");
+            const glm::dvec3 p = m * glm::dvec4(from, 1.0), q = m * glm::dvec4(to, 1.0);
+            if (!(glm::length(q - p) > 0.0)) fail(t.at, "a spot light's from and to are the same point");
+            const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
+            light::spot l;
+            l.position = glm::vec3(p);
+            l.direction = glm::vec3(glm::normalize(q - p));
+            l.cos_total_width = static_cast<float>(std::cos(glm::radians(cone)));
+            l.cos_falloff_start = static_cast<float>(std::cos(glm::radians(cone - delta)));
+            l.emitter = e;
+            m_doc.desc.lights.push_back(l);
+        } else if (type == "distant") {
+            const auto s = spd("L");
+            const glm::dvec3 from = ps.point("from", {0, 0, 0}), to = ps.point("to", {0, 0, 1});
+            ps.finish();
+            const glm::dvec3 dir = m * glm::dvec4(to - from, 0.0);  // the light travels from → to
+            if (!(glm::length(dir) > 0.0)) fail(t.at, "a distant light's from and to are the same point");
+            const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
+            m_doc.desc.lights.push_back(light::distant{glm::vec3(glm::normalize(dir)), e});
+        } else if (type == "infinite") {
+            if (ps.find("filename")) fail(t.at, "an environment image is not supported by the importer yet (docs/pbrt-import.md)");
+            if (ps.find("portal")) fail(t.at, "portals are not supported");
+            const auto s = spd("L");
+            ps.finish();
+            if (m_doc.desc.environment) fail(t.at, "a second infinite light (iris has one environment)");
+            m_doc.desc.environment = environment_desc{s.name, light_radiance(s, scale, t.at), std::nullopt, {}};
+        } else {
+            fail(t.at, "LightSource \"" + type + "\" is not supported (iris: point, spot, distant, infinite)");
+        }
+    }
+
+    // -- shapes
+    void shape(const token& t) {
+        const std::string type = quoted(t.at, "the shape's type");
+        auto ps = read_parameters("Shape \"" + type + "\"");
+        shape_spec s;
+        s.line = t.at.line;
+        s.pointer = "";
+        if (ps.find("alpha")) fail(t.at, "alpha (cut-out) shapes are not supported");
+        if (type == "trianglemesh" || type == "bilinearmesh") {
+            auto mesh = std::make_shared<iris::triangle_mesh>();
+            parameter* p = ps.find("P");
+            if (!p) fail(t.at, "Shape \"" + type + "\" has no \"point3 P\"");
+            const auto& pv = ps.expect(*p, {"point3", "point"}, 0).numbers;
+            if (pv.size() % 3 != 0 || pv.empty()) fail(p->at, "\"point3 P\" needs x y z triples");
+            for (std::size_t i = 0; i < pv.size(); i += 3) {
+                for (std::size_t k = 0; k < 3; ++k)
+                    if (std::fabs(pv[i + k]) > max_coordinate) fail(p->at, "a coordinate beyond ±1e7");
+                mesh->positions.emplace_back(pv[i], pv[i + 1], pv[i + 2]);
+            }
+            const std::size_t n = mesh->positions.size(), per = type == "trianglemesh" ? 3 : 4;
+            std::vector<double> idx;
+            if (parameter* q = ps.find("indices")) idx = ps.expect(*q, {"integer"}, 0).numbers;
+            else if (n == per)
+                for (std::size_t i = 0; i < per; ++i) idx.push_back(static_cast<double>(i));
+            else fail(t.at, "Shape \"" + type + "\" has no \"integer indices\" (needed unless it has exactly " + std::to_string(per) + " points)");
+            if (idx.empty() || idx.size() % per != 0) fail(t.at, "\"integer indices\" needs groups of " + std::to_string(per));
+            for (double i : idx)
+                if (i < 0 || i >= static_cast<double>(n) || i != std::floor(i))
+                    fail(t.at, "an index (" + reader_number(i) + ") is not one of the " + std::to_string(n) + " points");
+            auto u = [&](std::size_t i) { return static_cast<std::uint32_t>(idx[i]); };
+            if (per == 3) {
+                for (std::size_t i = 0; i < idx.size(); i += 3) mesh->triangles.push_back({u(i), u(i + 1), u(i + 2)});
+            } else {
+                // pbrt-v4's bilinear patch (p00, p10, p01, p11) as two triangles
+                for (std::size_t i = 0; i < idx.size(); i += 4) {
+                    mesh->triangles.push_back({u(i), u(i + 1), u(i + 3)});
+                    mesh->triangles.push_back({u(i), u(i + 3), u(i + 2)});
+                }
+                note(t.at, "bilinearmesh: each patch split into two triangles (exact when it is planar)");
+            }
+            if (parameter* q = ps.find("N")) {
+                const auto& nv = ps.expect(*q, {"normal", "normal3"}, 3 * n).numbers;
+                for (std::size_t i = 0; i < nv.size(); i += 3) mesh->normals.emplace_back(nv[i], nv[i + 1], nv[i + 2]);
+            }
+            if (parameter* q = ps.find("uv")) {
+                const auto& uv = ps.expect(*q, {"point2", "float"}, 2 * n).numbers;
+                for (std::size_t i = 0; i < uv.size(); i += 2) mesh->uvs.emplace_back(uv[i], uv[i + 1]);
+            }
+            if (parameter* q = ps.find("S")) note(q->at, "\"vector3 S\" (tangents) ignored");
+            if (parameter* q = ps.find("faceIndices")) note(q->at, "\"integer faceIndices\" ignored");
+            s.type = shape_type::triangles;
+            s.triangles = std::move(mesh);
+        } else if (type == "plymesh") {
+            const std::string f = ps.string("filename", "");
+            if (f.empty()) fail(t.at, "Shape \"plymesh\" has no \"string filename\"");
+            if (ps.find("displacement") || ps.find("edgelength")) fail(t.at, "displaced meshes are not supported");
+            std::filesystem::path p(f);
+            if (p.is_relative()) p = m_files.back().dir() / p;
+            if (p.extension() == ".gz") fail(t.at, "compressed PLY files are not supported yet: '" + f + "'");
+            s.type = shape_type::mesh;
+            s.file = p;
+        } else if (type == "sphere") {
+            const double r = ps.number("radius", 1.0);
+            if (!(r > 0.0 && r < max_coordinate)) fail(t.at, "a sphere's radius must be > 0");
+            if (ps.number("zmin", -r) != -r || ps.number("zmax", r) != r || ps.number("phimax", 360.0) != 360.0)
+                fail(t.at, "partial spheres (zmin, zmax, phimax) are not supported");
+            s.type = shape_type::sphere;
+            s.size = glm::vec3(static_cast<float>(r), 0.0f, 0.0f);
+            note(t.at, "sphere tessellated into 36 480 triangles");
+        } else if (type == "disk") {
+            const double r = ps.number("radius", 1.0), inner = ps.number("innerradius", 0.0), h = ps.number("height", 0.0);
+            if (!(r > 0.0) || !(inner >= 0.0 && inner < r)) fail(t.at, "a disk needs radius > innerradius ≥ 0");
+            if (ps.number("phimax", 360.0) != 360.0) fail(t.at, "partial disks (phimax) are not supported");
+            s.type = shape_type::disk;
+            s.size = glm::vec3(static_cast<float>(r), static_cast<float>(inner), static_cast<float>(h));
+            note(t.at, "disk tessellated into 192 segments");
+        } else {
+            fail(t.at, "Shape \"" + type + "\" is not supported (iris: trianglemesh, plymesh, sphere, disk, bilinearmesh)");
+        }
+        ps.finish();
+        s.material = current_material();
+        if (m_state.area_light) s.emitter = m_state.area_light;
+        s.name = type + "." + std::to_string(m_doc.shapes.size());
+        // pbrt-v4's normal is the object-space winding's, carried by the transform as a normal
+        // and turned by ReverseOrientation (its handedness rule undoes the turn a mirroring
+        // transform gives the winding); iris's `transformed` keeps the winding outward under a
+        // mirror the same way, the pbrt-to-iris mirror included: flip exactly when reversed
+        s.flip = m_state.reverse_orientation;
+        if (m_object) {
+            s.transform = glm::mat4(m_state.ctm);
+            if (s.emitter) fail(t.at, "an area light inside ObjectBegin is not supported");
+            m_objects[*m_object].push_back(std::move(s));
+            return;
+        }
+        s.transform = glm::mat4(world(m_state.ctm));
+        m_doc.shapes.push_back(std::move(s));
+    }
+
+    pbrt_import_options m_options;
+    scene_document m_doc;
+    std::vector<tokenizer> m_files;
+    std::vector<std::string> m_include_names;
+    std::optional<token> m_peeked;
+    location m_end;
+    graphics_state m_state;
+    std::vector<std::pair<graphics_state, location>> m_stack;
+    std::map<std::string, glm::dmat4> m_coordinate_systems;
+    std::map<std::string, std::uint32_t> m_named_materials;
+    std::map<std::string, std::vector<shape_spec>> m_objects;
+    std::optional<std::string> m_object;
+    location m_object_at, m_camera_at;
+    std::optional<std::uint32_t> m_default_material;
+    glm::dmat4 m_camera_from_world{1.0};
+    glm::dmat4 m_mirror{1.0};
+    double m_fov = 90.0;
+    bool m_world = false;
+    std::vector<std::string> m_notes;
+};
+
+}  // namespace
+
+scene_document parse_pbrt_document(std::string_view text, const std::string& source_name,
+                                   const std::filesystem::path& base_dir, const pbrt_import_options& options) {
+    importer imp(source_name, options);
+    return imp.run(std::string(text), source_name, base_dir);
+}
+
+}  // namespace iris::scene

@@ -1,0 +1,264 @@
+// The pbrt-v4 importer (docs/pbrt-import.md): every built-in scene survives the round trip
+// through `iris-scene export --pbrt` and back; pbrt-v4's conventions (its left-handed camera,
+// its light normalisation, its roughness remapping, its orientation rules) land on iris's;
+// bad input is an error at FILE:LINE:COLUMN, approximations are notes (errors with strict).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include <iris/scene/scene.hpp>
+#include <iris/spectrum/color.hpp>
+#include <iris/spectrum/named.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+iris::scene_desc import(const std::string& text, const iris::scene::pbrt_import_options& o = {}) {
+    return iris::scene::build_scene(iris::scene::parse_pbrt_document(text, "test.pbrt", fs::temp_directory_path(), o));
+}
+
+/// The message of the error `text` raises ("" if none).
+std::string error_of(const std::string& text, const iris::scene::pbrt_import_options& o = {}) {
+    try {
+        (void)iris::scene::parse_pbrt_document(text, "test.pbrt", fs::temp_directory_path() / "iris-no-such-dir", o);
+    } catch (const iris::scene::error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+const std::string camera = "LookAt 0 1 5  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
+                           "Film \"rgb\" \"integer xresolution\" 64 \"integer yresolution\" 48\n";
+const std::string lamp = "AttributeBegin\n AreaLightSource \"diffuse\" \"blackbody L\" 5000 \"float scale\" 3\n"
+                         " Shape \"trianglemesh\" \"point3 P\" [ -1 3 -1  1 3 -1  1 3 1  -1 3 1 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+                         "AttributeEnd\n";
+std::string scene(const std::string& world) { return camera + "WorldBegin\n" + lamp + world; }
+
+double luminance_of(const iris::tabulated_spectrum& s) { return iris::luminance(s); }
+
+}  // namespace
+
+TEST(PbrtImport, EveryBuiltinSceneSurvivesTheRoundTripThroughItsExport) {
+    for (const auto& b : iris::scene::builtin_scenes()) {
+        SCOPED_TRACE(std::string(b.name));
+        const auto s = iris::scene::builtin_scene(b.name);
+        const auto r = import(iris::scene::pbrt_scene_text(s));
+        EXPECT_EQ(r.camera.width, s.camera.width);
+        EXPECT_EQ(r.camera.height, s.camera.height);
+        EXPECT_NEAR(r.camera.fov_y_degrees, s.camera.fov_y_degrees, 1e-4);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.camera.position[i], s.camera.position[i], 1e-5);
+        const glm::vec3 d0 = glm::normalize(s.camera.look_at - s.camera.position), d1 = glm::normalize(r.camera.look_at - r.camera.position);
+        EXPECT_GT(glm::dot(d0, d1), 1.0f - 1e-6f);
+        EXPECT_GT(glm::dot(glm::normalize(glm::cross(d0, s.camera.up)), glm::normalize(glm::cross(d1, r.camera.up))), 1.0f - 1e-6f);
+        ASSERT_EQ(r.shapes.size(), s.shapes.size());
+        for (std::size_t i = 0; i < s.shapes.size(); ++i) {
+            const auto &a = s.shapes[i].mesh, &c = r.shapes[i].mesh;
+            ASSERT_EQ(a.positions.size(), c.positions.size());
+            EXPECT_EQ(a.positions, c.positions);  // exact: 9 significant digits, an identity transform
+            EXPECT_EQ(a.triangles, c.triangles);  // the same winding, so the same outside and emitting side
+            EXPECT_EQ(s.shapes[i].emitter.has_value(), r.shapes[i].emitter.has_value());
+            // the same material, evaluated where iris renders
+            const auto &ma = s.materials[s.shapes[i].material], &mb = r.materials[r.shapes[i].material];
+            ASSERT_EQ(ma.index(), mb.index());
+            for (double l = s.lambda_min; l <= s.lambda_max; l += 7.3) {
+                if (const auto* d = std::get_if<iris::material::diffuse>(&ma)) {
+                    EXPECT_NEAR(std::get<iris::material::diffuse>(mb).reflectance(l), d->reflectance(l), 1e-7);
+                }
+                if (const auto* g = std::get_if<iris::material::dielectric>(&ma)) {
+                    // η is written at every nanometre: exact (to 9 digits) there, and linear between
+                    // (off by up to h²/8·|n''| ≈ 1e-6 for N-SF11 at 380 nm, h = 1 nm)
+                    const auto& h = std::get<iris::material::dielectric>(mb);
+                    const double k = std::round(l);
+                    EXPECT_NEAR(iris::refractive_index(h.ior, k), iris::refractive_index(g->ior, k), 1e-8);
+                    EXPECT_EQ(iris::is_dispersive(h.ior), iris::is_dispersive(g->ior));
+                    EXPECT_EQ(h.roughness, g->roughness);
+                }
+            }
+            if (const auto e = s.shapes[i].emitter) {
+                const auto &la = s.emitters[*e].radiance, &lb = r.emitters[*r.shapes[i].emitter].radiance;
+                for (double l = s.lambda_min; l <= s.lambda_max; l += 3.7) EXPECT_NEAR(lb(l), la(l), 1e-6 * la(l) + 1e-12) << l;
+            }
+        }
+        EXPECT_EQ(r.lights.size(), s.lights.size());
+        EXPECT_EQ(r.environment.has_value(), s.environment.has_value());
+        EXPECT_EQ(r.default_spp, 64);
+        EXPECT_EQ(r.default_max_depth, 32);
+    }
+}
+
+TEST(PbrtImport, APlainLookAtIsMirroredIntoIrisWorldSoTheImageIsTheSame) {
+    // pbrt-v4's camera x is up × dir: a point at world x = +1 seen from the origin along +z is on
+    // the right of pbrt-v4's image. iris's right is dir × up: the importer mirrors the world.
+    const std::string text = "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+                             "LightSource \"point\" \"point3 from\" [ 1 0 5 ]\n"
+                             "Shape \"trianglemesh\" \"point3 P\" [ 1 0 5  2 0 5  1 1 5 ]\n";
+    const auto s = import(text);
+    const glm::vec3 dir = glm::normalize(s.camera.look_at - s.camera.position), right = glm::cross(dir, s.camera.up);
+    const auto& p = std::get<iris::light::point>(s.lights.at(0)).position;
+    EXPECT_GT(glm::dot(p - s.camera.position, right), 0.5f);  // on the right, as in pbrt-v4's image
+    EXPECT_GT(glm::dot(s.shapes[0].mesh.positions[0] - s.camera.position, right), 0.5f);
+    // pbrt-v4's normal of (1,0,5) (2,0,5) (1,1,5) is +z in its world (counter-clockwise from +z); the
+    // mirror keeps it +z: iris's winding normal must agree
+    const auto& m = s.shapes[0].mesh;
+    const auto& t = m.triangles[0];
+    const glm::vec3 n = glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+    EXPECT_GT(n.z, 0.0f);
+    // ReverseOrientation turns it
+    const auto r = import("LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+                          "LightSource \"point\" \"point3 from\" [ 1 0 5 ]\nReverseOrientation\n"
+                          "Shape \"trianglemesh\" \"point3 P\" [ 1 0 5  2 0 5  1 1 5 ]\n");
+    const auto& m2 = r.shapes[0].mesh;
+    const auto& t2 = m2.triangles[0];
+    EXPECT_LT(glm::cross(m2.positions[t2[1]] - m2.positions[t2[0]], m2.positions[t2[2]] - m2.positions[t2[0]]).z, 0.0f);
+}
+
+TEST(PbrtImport, LightsTakePbrtsNormalisationAndConventions) {
+    const auto s = import(scene("LightSource \"point\" \"blackbody I\" 3000 \"float scale\" 5 \"point3 from\" [ 1 2 3 ]\n"
+                                "LightSource \"spot\" \"float coneangle\" 40 \"float conedeltaangle\" 10 \"point3 from\" [ 0 4 0 ] \"point3 to\" [ 0 0 0 ]\n"
+                                "LightSource \"distant\" \"point3 from\" [ 0 1 0 ] \"point3 to\" [ 0 0 0 ] \"rgb L\" [ 1 1 1 ] \"float scale\" 2\n"
+                                "Shape \"sphere\" \"float radius\" 0.5\n"));
+    // an area light: iris's luminance is pbrt-v4's scale (its spectrum's own luminance divided out)
+    EXPECT_NEAR(luminance_of(s.emitters[0].radiance), 3.0, 1e-9);
+    ASSERT_EQ(s.lights.size(), 3u);
+    const auto& p = std::get<iris::light::point>(s.lights[0]);
+    EXPECT_NEAR(luminance_of(s.emitters[p.emitter].radiance), 5.0, 1e-9);
+    const auto& sp = std::get<iris::light::spot>(s.lights[1]);
+    EXPECT_NEAR(sp.cos_total_width, std::cos(40.0 * std::numbers::pi / 180.0), 1e-6);
+    EXPECT_NEAR(sp.cos_falloff_start, std::cos(30.0 * std::numbers::pi / 180.0), 1e-6);
+    EXPECT_NEAR(sp.direction.y, -1.0f, 1e-6);
+    EXPECT_NEAR(luminance_of(s.emitters[sp.emitter].radiance), 1.0, 1e-9);  // D65, pbrt-v4's default
+    // an "rgb" light is scale × the RGB illuminant spectrum: white is D65 at luminance 1
+    const auto& d = std::get<iris::light::distant>(s.lights[2]);
+    EXPECT_NEAR(d.direction.y, -1.0f, 1e-6);  // it travels from → to
+    EXPECT_NEAR(luminance_of(s.emitters[d.emitter].radiance), 2.0, 2.0 * 0.01);  // the sigmoid table's round trip
+    EXPECT_NEAR(s.emitters[d.emitter].radiance(560.0) / iris::find_illuminant("D65")->spectrum()(560.0),
+                s.emitters[d.emitter].radiance(460.0) / iris::find_illuminant("D65")->spectrum()(460.0), 0.02);
+}
+
+TEST(PbrtImport, MaterialsMapToIrisWithPbrtsRoughnessRemapping) {
+    const auto s = import(scene("Material \"dielectric\" \"spectrum eta\" \"glass-BK7\" \"float roughness\" 0.04\n"
+                                "Shape \"sphere\"\n"
+                                "Material \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\" "
+                                "\"float roughness\" 0.09 \"bool remaproughness\" false\nShape \"sphere\"\n"
+                                "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.2 0.1 ]\nShape \"disk\" \"float innerradius\" 0.5\n"
+                                "Material \"dielectric\" \"float eta\" 1.33\nShape \"sphere\"\n"));
+    const auto& g = std::get<iris::material::dielectric>(s.materials[s.shapes[1].material]);
+    EXPECT_NEAR(g.roughness, 0.2f, 1e-7);  // pbrt-v4's remapping: α = √roughness
+    EXPECT_NEAR(iris::refractive_index(g.ior, 587.5618), 1.5168, 1e-4);  // N-BK7's n_d
+    EXPECT_TRUE(iris::is_dispersive(g.ior));
+    const auto& c = std::get<iris::material::conductor>(s.materials[s.shapes[2].material]);
+    EXPECT_NEAR(c.roughness, 0.09f, 1e-7);
+    ASSERT_TRUE(c.ior.has_value());
+    EXPECT_NEAR(c.ior->eta(600.0), iris::find_metal("Au")->eta_spectrum()(600.0), 1e-12);
+    const auto& d = std::get<iris::material::diffuse>(s.materials[s.shapes[3].material]);
+    EXPECT_GT(d.reflectance(650.0), 0.6);  // Jakob-Hanika's red
+    EXPECT_LT(d.reflectance(450.0), 0.2);
+    const auto& w = std::get<iris::material::dielectric>(s.materials[s.shapes[4].material]);
+    EXPECT_FALSE(iris::is_dispersive(w.ior));
+    // the tessellations: glass spheres are closed outward solids; a unit sphere's area within
+    // 0.1 % of 4π, a unit annulus's of 3π/4
+    EXPECT_TRUE(iris::scene::check_dielectric_solids(s).empty());
+    double a = 0.0;
+    for (const auto& t : s.shapes[1].mesh.triangles) {
+        const auto& m = s.shapes[1].mesh;
+        a += 0.5 * glm::length(glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]));
+    }
+    EXPECT_NEAR(a, 4.0 * std::numbers::pi, 4.0 * std::numbers::pi * 1e-3);
+    double b = 0.0;
+    for (const auto& t : s.shapes[3].mesh.triangles) {
+        const auto& m = s.shapes[3].mesh;
+        const glm::vec3 n = glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+        EXPECT_GT(n.z, 0.0f);  // facing +z, as pbrt-v4's disk
+        b += 0.5 * glm::length(n);
+    }
+    EXPECT_NEAR(b, 0.75 * std::numbers::pi, 0.75 * std::numbers::pi * 1e-3);
+}
+
+TEST(PbrtImport, ObjectsAreInstancedWithTheInstanceTransform) {
+    const auto s = import(scene("ObjectBegin \"tri\"\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0 ]\nObjectEnd\n"
+                                "AttributeBegin\nTranslate 10 0 0\nObjectInstance \"tri\"\nAttributeEnd\n"
+                                "AttributeBegin\nTranslate 0 0 -10\nObjectInstance \"tri\"\nAttributeEnd\n"));
+    ASSERT_EQ(s.shapes.size(), 3u);
+    // LookAt 0 1 5 → 0 1 0 is left-handed in pbrt-v4: iris's world is pbrt's mirrored in x
+    EXPECT_EQ(s.shapes[1].mesh.positions[0], glm::vec3(-10.0f, 0.0f, 0.0f));
+    EXPECT_EQ(s.shapes[2].mesh.positions[0], glm::vec3(0.0f, 0.0f, -10.0f));
+}
+
+TEST(PbrtImport, BadInputIsAnErrorAtFileLineAndColumn) {
+    struct bad {
+        std::string text, message;
+    };
+    const bad cases[] = {
+        {camera + "WorldBegin\n  Foo 1 2\n", "test.pbrt:5:3: unknown directive 'Foo'"},
+        {camera + "WorldBegin\nShape \"sphere\" \"float radius\" 1 \"float foo\" 2\n",
+         "test.pbrt:5:33: parameter \"float foo\" of Shape \"sphere\" is not supported"},
+        {camera + "WorldBegin\nShape \"sphere\" \"string radius\" \"x\"\n", "test.pbrt:5:16: parameter \"string radius\" of Shape \"sphere\" has the wrong type"},
+        {camera + "WorldBegin\nShape \"sphere\" \"float radius\" \"one\"\n", "test.pbrt:5:31: \"float radius\" takes numbers, found 'one'"},
+        {camera + "WorldBegin\nNamedMaterial \"nope\"\n", "test.pbrt:5:1: unknown material 'nope'"},
+        {camera + "WorldBegin\nAttributeEnd\n", "test.pbrt:5:1: AttributeEnd without a matching AttributeBegin"},
+        {camera + "WorldBegin\nAttributeBegin\n" + lamp, "test.pbrt:5:1: AttributeBegin without its AttributeEnd"},
+        {camera, "no WorldBegin"},
+        {camera + "WorldBegin\n", "the scene has no shapes"},
+        {camera + "WorldBegin\nShape \"sphere\"\n", "the scene has no light"},
+        {scene("Shape \"curve\"\n"), "Shape \"curve\" is not supported"},
+        {scene("Texture \"t\" \"spectrum\" \"imagemap\"\n"), "textures are not supported by iris's pbrt-v4 importer yet"},
+        {scene("Material \"hair\"\nShape \"sphere\"\n"), "material type 'hair' is not supported"},
+        {scene("Shape \"sphere\" \"float radius\" 1 \"float zmax\" 0.5\n"), "partial spheres"},
+        {scene("Material \"diffuse\" \"rgb reflectance\" [ 2 0 0 ]\n"), "components must be at most 1"},
+        {scene("Material \"dielectric\" \"spectrum eta\" [ 400 1.5 300 1.6 ]\n"), "the wavelengths must increase"},
+        {scene("Material \"dielectric\" \"spectrum eta\" \"glass-XYZ\"\n"), "unknown named spectrum 'glass-XYZ'"},
+        {scene("Include \"missing.pbrt\"\n"), "included file"},
+        {scene("Shape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 ] \"integer indices\" [ 0 1 3 ]\n"), "is not one of the 3 points"},
+        {camera + "WorldBegin\nShape \"sphere\" \"string name\" \"unterminated\n", "test.pbrt:5:30: unterminated string"},
+        {camera + "WorldBegin\nTranslate 1 2 nan\n", "test.pbrt:5:15: expected Translate's x y z (a number), found 'nan'"},
+        {camera + "WorldBegin\nTranslate 1 2 1e999\n", "test.pbrt:5:15: '1e999' is not a number"},
+        {camera + "WorldBegin\nCamera \"perspective\"\n", "Camera is allowed only before WorldBegin"},
+        {scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"), "participating media are not supported yet"},
+        {scene("LightSource \"point\" \"float power\" 10\n"), "\"power\" is not supported yet"},
+        {scene("Shape \"sphere\" \"float radius\" [ 1 2 ]\n"), "takes 1 value, got 2"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.text);
+        const std::string e = error_of(c.text);
+        EXPECT_NE(e.find(c.message), std::string::npos) << e;
+    }
+}
+
+TEST(PbrtImport, ApproximationsAreNotesAndErrorsWhenStrict) {
+    const std::string text = scene("Material \"coateddiffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ] \"float roughness\" 0.1\n"
+                                   "Shape \"sphere\"\n");
+    const auto s = import(text);
+    bool noted = false;
+    for (const auto& n : iris::scene::approximations(s)) noted |= n.find("coateddiffuse approximated by its diffuse base") != std::string::npos;
+    EXPECT_TRUE(noted);
+    const std::string e = error_of(text, {.strict = true});
+    EXPECT_NE(e.find("test.pbrt:9:1: material 'material.1': coateddiffuse approximated by its diffuse base"), std::string::npos) << e;
+    EXPECT_NE(e.find("(an error under --strict)"), std::string::npos) << e;
+}
+
+TEST(PbrtImport, IncludesAreReadRelativeToTheIncludingFileAndCyclesAreRefused) {
+    const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-" + std::to_string(::getpid()));
+    fs::create_directories(dir / "sub");
+    std::ofstream(dir / "main.pbrt") << camera << "WorldBegin\nInclude \"sub/geometry.pbrt\"\n";
+    std::ofstream(dir / "sub" / "geometry.pbrt") << lamp << "Include \"more.pbrt\"\n";
+    std::ofstream(dir / "sub" / "more.pbrt") << "Shape \"sphere\"\n";
+    const auto s = iris::scene::load_scene_file(dir / "main.pbrt");
+    EXPECT_EQ(s.shapes.size(), 2u);
+    EXPECT_EQ(s.name, "main");
+    std::ofstream(dir / "sub" / "more.pbrt", std::ios::trunc) << "Include \"geometry.pbrt\"\n";
+    try {
+        (void)iris::scene::load_scene_file(dir / "main.pbrt");
+        ADD_FAILURE() << "no error for an include cycle";
+    } catch (const iris::scene::error& e) {
+        EXPECT_NE(std::string(e.what()).find("includes itself"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("more.pbrt:1:1:"), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
+}
