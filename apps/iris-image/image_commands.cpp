@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include <fmt/core.h>
@@ -129,6 +130,61 @@ void bias(const std::vector<std::string>& run_paths, const std::string& referenc
     else
         fmt::print("runs={} mse={:.6g} variance={:.6g} bias_sq={:.6g} bias_sq_se={:.3g}\n", b.runs, b.mse, b.variance,
                    b.bias_sq, b.bias_sq_se);
+}
+
+// ---- regions --------------------------------------------------------------------------
+
+/// Per N×N block (whole blocks only, from the top-left), the mean of each channel of both
+/// images and their relative difference (IMAGE − REFERENCE) / REFERENCE; blocks whose
+/// reference luminance is below `floor` × the image's mean are not compared (a relative
+/// difference of near-black means nothing). For comparing two renderers region by region.
+void regions(const std::string& image_path, const std::string& reference_path, int size, double floor, bool json) {
+    const image_pair p = load_pair(image_path, reference_path);
+    const int w = p.test.pixels.width(), h = p.test.pixels.height();
+    if (size < 1 || size > w || size > h)
+        throw usage_error(fmt::format("--size {} does not fit a {} image", size, size_of(p.test.pixels)));
+    const auto lum = [](const rgb_pixel& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+    double mean = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) mean += lum(p.reference.pixels(x, y));
+    mean /= static_cast<double>(w) * h;
+    int blocks = 0, compared = 0, worst_x = -1, worst_y = -1;
+    double max_rel = 0.0, sum_abs = 0.0, sum_signed = 0.0;
+    for (int by = 0; by + size <= h; by += size)
+        for (int bx = 0; bx + size <= w; bx += size) {
+            ++blocks;
+            double a[3] = {}, b[3] = {};
+            for (int y = by; y < by + size; ++y)
+                for (int x = bx; x < bx + size; ++x) {
+                    const rgb_pixel &t = p.test.pixels(x, y), &r = p.reference.pixels(x, y);
+                    a[0] += t.r, a[1] += t.g, a[2] += t.b;
+                    b[0] += r.r, b[1] += r.g, b[2] += r.b;
+                }
+            const double n = static_cast<double>(size) * size;
+            if (0.2126 * b[0] / n + 0.7152 * b[1] / n + 0.0722 * b[2] / n < floor * mean) continue;
+            ++compared;
+            for (int c = 0; c < 3; ++c) {
+                // a channel that is itself near black (a saturated colour) is measured against the
+                // block's luminance instead
+                const double den = std::max(b[c], 0.2126 * b[0] + 0.7152 * b[1] + 0.0722 * b[2]);
+                const double rel = den > 0.0 ? (a[c] - b[c]) / den : 0.0;
+                sum_abs += std::fabs(rel) / 3.0;
+                sum_signed += rel / 3.0;
+                if (std::fabs(rel) > max_rel) {
+                    max_rel = std::fabs(rel);
+                    worst_x = bx;
+                    worst_y = by;
+                }
+            }
+        }
+    const double k = compared > 0 ? 1.0 / compared : 0.0;
+    if (json)
+        fmt::print("{{\"regions\": {}, \"compared\": {}, \"max_rel\": {}, \"mean_abs_rel\": {}, \"mean_rel\": {}, "
+                   "\"worst_x\": {}, \"worst_y\": {}}}\n",
+                   blocks, compared, max_rel, sum_abs * k, sum_signed * k, worst_x, worst_y);
+    else
+        fmt::print("regions={} compared={} max_rel={:.4f} mean_abs_rel={:.4f} mean_rel={:+.4f} worst={},{}\n", blocks,
+                   compared, max_rel, sum_abs * k, sum_signed * k, worst_x, worst_y);
 }
 
 // ---- convert --------------------------------------------------------------------------
@@ -255,6 +311,20 @@ void add_image_commands(CLI::App& app) {
     diff_cmd->add_option("REFERENCE", o->reference, "reference EXR (relmse divides by it)")->required();
     diff_cmd->add_flag("--json", o->json, "print one JSON object (keys mse relmse ssim max_abs pixels width height)");
     diff_cmd->callback([o] { diff(o->image, o->reference, o->json); });
+
+    auto region = std::make_shared<std::pair<int, double>>(20, 0.01);
+    auto* regions_cmd = app.add_subcommand(
+        "regions", "Compare IMAGE with REFERENCE block by block: the relative difference of each block's mean, per "
+                   "channel (max, mean of its magnitude, mean with its sign) over the blocks bright enough to compare");
+    regions_cmd->add_option("IMAGE", o->image, "EXR to measure")->required();
+    regions_cmd->add_option("REFERENCE", o->reference, "reference EXR (the denominator)")->required();
+    regions_cmd->add_option("--size", region->first, "block side in pixels")->capture_default_str();
+    regions_cmd->add_option("--floor", region->second,
+                            "blocks whose reference luminance is below this fraction of the image's mean are skipped")
+        ->check(CLI::Range(0.0, 1e6))
+        ->capture_default_str();
+    regions_cmd->add_flag("--json", o->json, "print one JSON object (keys regions compared max_rel mean_abs_rel mean_rel worst_x worst_y)");
+    regions_cmd->callback([o, region] { regions(o->image, o->reference, region->first, region->second, o->json); });
 
     auto runs = std::make_shared<std::vector<std::string>>();
     auto* bias_cmd = app.add_subcommand("bias", "Split the MSE of independent runs (2 or more seeds) against "

@@ -9,6 +9,11 @@
 //       the MSE of independent runs (the same render, other seeds) against REFERENCE split
 //       into the runs' variance and the squared bias (with the reference's own error), and
 //       the bias's standard error: `runs=… mse=… variance=… bias_sq=… bias_sq_se=…`.
+//   iris-image regions IMAGE REFERENCE [--size N=20] [--floor F=0.01] [--json]
+//       per N×N block, the relative difference of the means (IMAGE − REFERENCE) / REFERENCE of
+//       each channel (a near-black channel against the block's luminance), over the blocks
+//       whose reference luminance is at least F × the image's mean: `regions=… compared=…
+//       max_rel=… mean_abs_rel=… mean_rel=… worst=X,Y` (comparing two renderers).
 //   iris-image convert IMAGE -o OUT.png [--exposure E]
 //       8-bit sRGB PNG of IMAGE scaled by 2^E (E in stops; default 0).
 //   iris-image crop IMAGE --rect X,Y,W,H -o OUT.exr

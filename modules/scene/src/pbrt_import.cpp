@@ -286,6 +286,9 @@ public:
 
     scene_document run(std::string text, const std::string& source, const std::filesystem::path& dir) {
         m_files.emplace_back(std::move(text), source, dir);
+        // pbrt-v4's defaults without a Sampler or Integrator directive
+        m_doc.desc.default_spp = 16;
+        m_doc.desc.default_max_depth = 5;
         std::filesystem::path stem = std::filesystem::path(source).stem();
         m_doc.desc.name = stem.empty() ? "pbrt" : stem.string();
         while (auto t = next()) directive(*t);
