@@ -4,6 +4,7 @@
 // bad input is an error at FILE:LINE:COLUMN, approximations are notes (errors with strict).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -223,12 +224,53 @@ TEST(PbrtImport, BadInputIsAnErrorAtFileLineAndColumn) {
         {scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"), "participating media are not supported yet"},
         {scene("LightSource \"point\" \"float power\" 10\n"), "\"power\" is not supported yet"},
         {scene("Shape \"sphere\" \"float radius\" [ 1 2 ]\n"), "takes 1 value, got 2"},
+        // mismatched nesting, values that overflow, bad geometry (found by review)
+        {scene("ObjectBegin \"a\"\nAttributeEnd\nObjectEnd\n"), "test.pbrt:10:1: AttributeEnd without a matching AttributeBegin (mismatched nesting)"},
+        {scene("AttributeBegin\nObjectEnd\n"), "test.pbrt:10:1: ObjectEnd without a matching ObjectBegin"},
+        {scene("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1e39 1 1 ]\nShape \"sphere\"\nAttributeEnd\n"), "test.pbrt:10:1: a value out of range"},
+        {scene("LightSource \"point\" \"float scale\" 1e300\n"), "the light's radiance overflows"},
+        {scene("LightSource \"point\" \"point3 from\" [ 1e39 0 0 ]\n"), "a light's position is beyond"},
+        {scene("LightSource \"spot\" \"point3 from\" [ 0 0 0 ] \"point3 to\" [ 0 0 0 ]\n"), "a spot light has no direction"},
+        {scene("Material \"conductor\" \"spectrum eta\" [ 380 1.5 780 1.5 ]\nShape \"sphere\"\n"), "eta must be > 0 and k ≥ 0 at 360-830 nm"},
+        {scene("Material \"conductor\" \"spectrum eta\" [ 360 1e200 830 1e200 ]\nShape \"sphere\"\n"), "a value out of range"},
+        {scene("Material \"coatedconductor\" \"float conductor.roughness\" -1\nShape \"sphere\"\n"), "a roughness must be at least 0"},
+        {scene("Material \"dielectric\" \"float roughness\" 4\nShape \"sphere\"\n"), "a GGX α above 1"},
+        {scene("Option \"bool disablepixeljitter\" [ true\n"), "the file ends inside the list of Option"},
+        {"Scale 0 1 1\n" + scene("Shape \"sphere\"\n"), "the camera's transform is singular"},
+        {camera + "Import \"x.pbrt\"\n", "Import is allowed only after WorldBegin"},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.text);
         const std::string e = error_of(c.text);
         EXPECT_NE(e.find(c.message), std::string::npos) << e;
     }
+}
+
+TEST(PbrtImport, TransformEndAndImportKeepTheirStateInside) {
+    // pbrt-v4 reads TransformBegin/End as AttributeBegin/End: a material set inside does not leak
+    const auto s = import(scene("TransformBegin\nMaterial \"dielectric\"\nTransformEnd\nShape \"sphere\"\n"));
+    EXPECT_TRUE(std::holds_alternative<iris::material::diffuse>(s.materials[s.shapes.back().material]));
+    // an Import's transform, material and area light stay inside the imported file
+    const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-state-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "main.pbrt") << scene("Import \"part.pbrt\"\nShape \"disk\"\n");
+    std::ofstream(dir / "part.pbrt") << "Translate 5 0 0\nMaterial \"dielectric\"\nAreaLightSource \"diffuse\"\nShape \"sphere\"\n";
+    const auto r = iris::scene::load_scene_file(dir / "main.pbrt");
+    ASSERT_EQ(r.shapes.size(), 3u);
+    EXPECT_TRUE(r.shapes[1].emitter.has_value());   // the imported sphere
+    EXPECT_FALSE(r.shapes[2].emitter.has_value());  // the disk after it: no area light, no dielectric, no shift
+    EXPECT_TRUE(std::holds_alternative<iris::material::diffuse>(r.materials[r.shapes[2].material]));
+    float xmax = -1e9f;
+    for (const auto& p : r.shapes[2].mesh.positions) xmax = std::max(xmax, std::fabs(p.x));
+    EXPECT_LT(xmax, 1.5f);
+    std::ofstream(dir / "part.pbrt", std::ios::trunc) << "AttributeBegin\nShape \"sphere\"\n";
+    try {
+        (void)iris::scene::load_scene_file(dir / "main.pbrt");
+        ADD_FAILURE() << "no error for an import that leaves an AttributeBegin open";
+    } catch (const iris::scene::error& e) {
+        EXPECT_NE(std::string(e.what()).find("the imported file ends inside an AttributeBegin"), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
 }
 
 TEST(PbrtImport, ApproximationsAreNotesAndErrorsWhenStrict) {
@@ -238,21 +280,24 @@ TEST(PbrtImport, ApproximationsAreNotesAndErrorsWhenStrict) {
     bool noted = false;
     for (const auto& n : iris::scene::approximations(s)) noted |= n.find("coateddiffuse approximated by its diffuse base") != std::string::npos;
     EXPECT_TRUE(noted);
-    const std::string e = error_of(text, {.strict = true});
-    EXPECT_NE(e.find("test.pbrt:9:1: material 'material.1': coateddiffuse approximated by its diffuse base"), std::string::npos) << e;
+    const std::string e = error_of("PixelFilter \"box\"\n" + text, {.strict = true});
+    EXPECT_NE(e.find("test.pbrt:10:1: material 'material.1': coateddiffuse approximated by its diffuse base"), std::string::npos) << e;
+    // without a PixelFilter, pbrt-v4's default Gaussian is the first approximation
+    EXPECT_NE(error_of(text, {.strict = true}).find("no PixelFilter: pbrt-v4's default Gaussian filter approximated"), std::string::npos);
     EXPECT_NE(e.find("(an error under --strict)"), std::string::npos) << e;
 }
 
-TEST(PbrtImport, IncludesAreReadRelativeToTheIncludingFileAndCyclesAreRefused) {
+TEST(PbrtImport, IncludesAreReadRelativeToTheMainFileAndCyclesAreRefused) {
     const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-" + std::to_string(::getpid()));
     fs::create_directories(dir / "sub");
     std::ofstream(dir / "main.pbrt") << camera << "WorldBegin\nInclude \"sub/geometry.pbrt\"\n";
-    std::ofstream(dir / "sub" / "geometry.pbrt") << lamp << "Include \"more.pbrt\"\n";
+    // relative to the main file's directory, as pbrt-v4 resolves every path
+    std::ofstream(dir / "sub" / "geometry.pbrt") << lamp << "Include \"sub/more.pbrt\"\n";
     std::ofstream(dir / "sub" / "more.pbrt") << "Shape \"sphere\"\n";
     const auto s = iris::scene::load_scene_file(dir / "main.pbrt");
     EXPECT_EQ(s.shapes.size(), 2u);
     EXPECT_EQ(s.name, "main");
-    std::ofstream(dir / "sub" / "more.pbrt", std::ios::trunc) << "Include \"geometry.pbrt\"\n";
+    std::ofstream(dir / "sub" / "more.pbrt", std::ios::trunc) << "Include \"sub/geometry.pbrt\"\n";
     try {
         (void)iris::scene::load_scene_file(dir / "main.pbrt");
         ADD_FAILURE() << "no error for an include cycle";

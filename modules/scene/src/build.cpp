@@ -231,8 +231,8 @@ iris::scene_desc build_scene(const scene_document& doc) {
 
     for (const auto& spec : doc.shapes) {
         const auto fail = [&](const std::string& message) -> void {
-            throw error(doc.source, spec.line, spec.type == shape_type::mesh ? spec.pointer + "/file" : spec.pointer,
-                        message);
+            throw error(spec.file_name.empty() ? doc.source : spec.file_name, spec.line,
+                        spec.type == shape_type::mesh && !spec.pointer.empty() ? spec.pointer + "/file" : spec.pointer, message);
         };
         iris::triangle_mesh mesh;
         try {
@@ -240,8 +240,10 @@ iris::scene_desc build_scene(const scene_document& doc) {
         } catch (const geometry::error& e) {
             fail(e.what());
         }
-        if (spec.flip)
+        if (spec.flip) {  // the other side out: the shading normals turn with the winding
             for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+            for (auto& n : mesh.normals) n = -n;
+        }
 
         double area = 0.0;
         for (const auto& p : mesh.positions)

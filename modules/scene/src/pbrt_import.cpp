@@ -19,6 +19,7 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,9 @@ namespace iris::scene {
 namespace {
 
 constexpr int max_include_depth = 32;
+constexpr std::size_t max_included_files = 10000;
+constexpr std::size_t max_included_bytes = std::size_t{4} << 30;
+constexpr std::size_t max_triangles = std::size_t{1} << 28;  ///< what a scene may hold (about 270 M)
 constexpr double max_coordinate = 1e7;
 
 // ---- tokens ---------------------------------------------------------------------------
@@ -285,14 +289,22 @@ public:
     importer(const std::string& source, const pbrt_import_options& o) : m_options(o) { m_doc.source = source; }
 
     scene_document run(std::string text, const std::string& source, const std::filesystem::path& dir) {
+        m_base = dir;
+        m_last = {source, 1, 1};
         m_files.emplace_back(std::move(text), source, dir);
         // pbrt-v4's defaults without a Sampler or Integrator directive
         m_doc.desc.default_spp = 16;
         m_doc.desc.default_max_depth = 5;
         std::filesystem::path stem = std::filesystem::path(source).stem();
         m_doc.desc.name = stem.empty() ? "pbrt" : stem.string();
-        while (auto t = next()) directive(*t);
-        if (!m_stack.empty()) fail(m_stack.back().second, "AttributeBegin without its AttributeEnd");
+        while (auto t = next()) {
+            finish_imports();
+            directive(*t);
+        }
+        finish_imports();
+        if (!m_stack.empty())
+            fail(m_stack.back().at, m_stack.back().kind == opened::object ? "ObjectBegin without its ObjectEnd"
+                                                                          : "AttributeBegin without its AttributeEnd");
         if (m_object) fail(m_object_at, "ObjectBegin \"" + *m_object + "\" without its ObjectEnd");
         if (!m_world) fail(m_end, "no WorldBegin: the file describes no scene");
         if (m_doc.shapes.empty()) fail(m_end, "the scene has no shapes");
@@ -308,12 +320,31 @@ private:
     std::optional<token> next() {
         if (m_peeked) return std::exchange(m_peeked, std::nullopt);
         while (!m_files.empty()) {
-            if (auto t = m_files.back().next()) return t;
-            m_end = {m_files.back().file(), 0, 0};
+            if (auto t = m_files.back().next()) {
+                m_last = t->at;
+                return t;
+            }
+            m_end = m_last;
             m_files.pop_back();
-            if (!m_include_names.empty() && m_files.size() < m_include_names.size() + 1) m_include_names.pop_back();
+            // the end of an imported file: undone before the next directive (`finish_imports`),
+            // not here — the last directive of the file may be reading past its end
+            if (!m_imports.empty() && m_imports.back().files == m_files.size() && !m_imports.back().ended) {
+                m_imports.back().ended = true;
+                m_imports.back().at = m_end;
+            }
         }
         return std::nullopt;
+    }
+
+    /// An imported file's state changes stay inside it (pbrt-v4's Import).
+    void finish_imports() {
+        while (!m_imports.empty() && m_imports.back().ended) {
+            if (m_stack.size() != m_imports.back().stack || m_stack.back().kind != opened::import)
+                fail(m_imports.back().at, "the imported file ends inside an AttributeBegin or ObjectBegin it opened");
+            m_state = m_stack.back().state;
+            m_stack.pop_back();
+            m_imports.pop_back();
+        }
     }
     std::optional<token> peek() {
         if (!m_peeked) m_peeked = next();
@@ -394,8 +425,11 @@ private:
         return ps;
     }
 
-    void note(const location& at, const std::string& message) {
-        if (m_options.strict) fail(at, message + " (an error under --strict)");
+    /// What the importer approximated (an error with `strict`) or, with `approximation` false,
+    /// ignored without an effect on the image (an output file name, a sampler type): printed
+    /// by every tool either way.
+    void note(const location& at, const std::string& message, bool approximation = true) {
+        if (m_options.strict && approximation) fail(at, message + " (an error under --strict)");
         m_notes.push_back(at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + message);
     }
 
@@ -411,6 +445,14 @@ private:
 
     // -- directives
     void directive(const token& t) {
+        try {
+            run_directive(t);
+        } catch (const std::invalid_argument& e) {  // a spectrum table refused a value (overflow)
+            fail(t.at, std::string("a value out of range (it overflows or is not a number): ") + e.what());
+        }
+    }
+
+    void run_directive(const token& t) {
         if (t.type != token::kind::word) fail(t.at, "expected a directive, found '" + t.text + "'");
         const std::string& d = t.text;
         if (d == "Translate") {
@@ -446,26 +488,31 @@ private:
         } else if (d == "ReverseOrientation") {
             m_state.reverse_orientation = !m_state.reverse_orientation;
         } else if (d == "AttributeBegin" || d == "TransformBegin") {
-            if (d == "TransformBegin") note(t.at, "TransformBegin is deprecated in pbrt-v4: read as AttributeBegin for the transform");
-            m_stack.push_back({m_state, t.at});
+            // pbrt-v4 reads the deprecated TransformBegin/End as AttributeBegin/End
+            m_stack.push_back({m_state, t.at, opened::attribute});
         } else if (d == "AttributeEnd" || d == "TransformEnd") {
-            if (m_stack.empty()) fail(t.at, d + " without a matching AttributeBegin");
-            if (d == "TransformEnd") m_state.ctm = m_stack.back().first.ctm;
-            else m_state = m_stack.back().first;
+            if (m_stack.empty() || m_stack.back().kind != opened::attribute)
+                fail(t.at, d + " without a matching AttributeBegin" +
+                               (m_stack.empty() ? std::string() : std::string(" (mismatched nesting)")));
+            m_state = m_stack.back().state;
             m_stack.pop_back();
         } else if (d == "ActiveTransform") {
             const auto w = expect(token::kind::word, t.at, "All, StartTime or EndTime");
             if (w.text != "All") fail(w.at, "ActiveTransform " + w.text + ": motion blur is not supported (only All)");
         } else if (d == "TransformTimes") {
             numbers(2, t.at, "TransformTimes's start and end");
-            note(t.at, "TransformTimes ignored (iris renders no motion blur)");
+            note(t.at, "TransformTimes ignored (iris renders no motion blur)", false);
         } else if (d == "Option") {
             const std::string n = quoted(t.at, "the option's declaration");
             auto v = next();
-            if (v && v->type == token::kind::open)
-                while ((v = next()) && v->type != token::kind::close) {
+            if (!v) fail(t.at, "the file ends where the value of Option \"" + n + "\" was expected");
+            if (v->type == token::kind::open)
+                for (;;) {
+                    auto w = next();
+                    if (!w) fail(v->at, "the file ends inside the list of Option \"" + n + "\" (a ']' is missing)");
+                    if (w->type == token::kind::close) break;
                 }
-            note(t.at, "Option \"" + n + "\" ignored");
+            note(t.at, "Option \"" + n + "\" ignored", false);
         } else if (d == "ColorSpace") {
             const std::string n = quoted(t.at, "the colour space's name");
             if (n != "srgb") fail(t.at, "ColorSpace \"" + n + "\": only \"srgb\" is supported");
@@ -479,29 +526,39 @@ private:
             require_world(t, false);
             const std::string type = quoted(t.at, "the sampler's type");
             auto ps = read_parameters("Sampler \"" + type + "\"");
-            m_doc.desc.default_spp = ps.integer("pixelsamples", 16);
-            if (m_doc.desc.default_spp < 1) fail(t.at, "\"integer pixelsamples\" must be at least 1");
+            // pbrt-v4's sample counts: "stratified" takes x × y jittered samples, "independent"
+            // defaults to 4, the others to 16
+            if (type == "stratified") m_doc.desc.default_spp = ps.integer("xsamples", 4) * ps.integer("ysamples", 4);
+            else m_doc.desc.default_spp = ps.integer("pixelsamples", type == "independent" ? 4 : 16);
+            if (m_doc.desc.default_spp < 1) fail(t.at, "the sampler's sample count must be at least 1");
             for (auto& p : ps.list)
                 if (!p.used) {
                     p.used = true;
-                    note(p.at, "Sampler parameter \"" + p.name + "\" ignored (iris-render --sampler chooses iris's sampler)");
+                    note(p.at, "Sampler parameter \"" + p.name + "\" ignored (iris-render --sampler chooses iris's sampler)", false);
                 }
-            if (type != "zsobol") note(t.at, "Sampler \"" + type + "\": iris uses its own sampler (--sampler); its pixelsamples is the default spp");
+            if (type != "zsobol")
+                note(t.at, "Sampler \"" + type + "\": iris uses its own sampler (--sampler); its sample count is the default spp", false);
         } else if (d == "Integrator") {
             require_world(t, false);
             const std::string type = quoted(t.at, "the integrator's type");
             auto ps = read_parameters("Integrator \"" + type + "\"");
             m_doc.desc.default_max_depth = ps.integer("maxdepth", 5);
             if (m_doc.desc.default_max_depth < 0) fail(t.at, "\"integer maxdepth\" must be at least 0");
+            if (m_doc.desc.default_max_depth == 0) {
+                note(t.at, "\"integer maxdepth\" 0 (emitters seen directly only): iris's shortest path has one scattering event");
+                m_doc.desc.default_max_depth = 1;
+            }
             for (auto& p : ps.list)
                 if (!p.used) {
                     p.used = true;
                     note(p.at, "Integrator parameter \"" + p.name + "\" ignored");
                 }
-            note(t.at, "Integrator \"" + type + "\": iris renders with its own estimator (iris-render --estimator); maxdepth is the default max depth");
+            note(t.at, "Integrator \"" + type + "\": iris renders with its own estimator (iris-render --estimator); maxdepth is the default max depth",
+                 false);
         } else if (d == "PixelFilter") {
             require_world(t, false);
             const std::string type = quoted(t.at, "the filter's type");
+            m_filter_given = true;
             auto ps = read_parameters("PixelFilter \"" + type + "\"");
             const double rx = ps.number("xradius", type == "box" ? 0.5 : 1.5), ry = ps.number("yradius", type == "box" ? 0.5 : 1.5);
             for (auto& p : ps.list) p.used = true;
@@ -511,14 +568,15 @@ private:
             const std::string type = quoted(t.at, "the accelerator's type");
             auto ps = read_parameters("Accelerator");
             for (auto& p : ps.list) p.used = true;
-            note(t.at, "Accelerator \"" + type + "\" ignored (iris uses Embree)");
+            note(t.at, "Accelerator \"" + type + "\" ignored (iris uses Embree)", false);
         } else if (d == "WorldBegin") {
             require_world(t, false);
             world_begin(t);
         } else if (d == "WorldEnd") {
-            note(t.at, "WorldEnd is not a pbrt-v4 directive (pbrt-v3's): ignored");
+            note(t.at, "WorldEnd is not a pbrt-v4 directive (pbrt-v3's): ignored", false);
         } else if (d == "Include" || d == "Import") {
-            include(t);
+            if (d == "Import") require_world(t, true);
+            include(t, d == "Import");
         } else if (d == "MakeNamedMaterial") {
             require_world(t, true);
             const std::string n = quoted(t.at, "the material's name");
@@ -560,11 +618,12 @@ private:
             m_object = n;
             m_object_at = t.at;
             m_objects[n];
-            m_stack.push_back({m_state, t.at});
+            m_stack.push_back({m_state, t.at, opened::object});
         } else if (d == "ObjectEnd") {
-            if (!m_object) fail(t.at, "ObjectEnd without ObjectBegin");
+            if (!m_object || m_stack.empty() || m_stack.back().kind != opened::object)
+                fail(t.at, "ObjectEnd without a matching ObjectBegin");
             m_object.reset();
-            m_state = m_stack.back().first;
+            m_state = m_stack.back().state;
             m_stack.pop_back();
         } else if (d == "ObjectInstance") {
             require_world(t, true);
@@ -575,7 +634,7 @@ private:
             for (shape_spec s : it->second) {  // its orientation is the definition's
                 s.transform = glm::mat4(world(m_state.ctm) * glm::dmat4(s.transform));
                 s.name = n + "/" + s.name;
-                m_doc.shapes.push_back(std::move(s));
+                add_shape(std::move(s), t.at);
             }
         } else if (d == "MakeNamedMedium" || d == "MediumInterface") {
             if (d == "MediumInterface") {
@@ -621,8 +680,10 @@ private:
             note(t.at, "Camera \"lensradius\": iris's camera is a pinhole (no depth of field)");
         }
         ps.find("focaldistance");
-        if (auto* p = ps.find("shutteropen")) p->used = true;
-        if (auto* p = ps.find("shutterclose")) p->used = true;
+        // pbrt-v4's exposure is the shutter's open time (times the film's ISO / 100)
+        const double open = ps.number("shutteropen", 0.0), close = ps.number("shutterclose", 1.0);
+        if (close - open != 1.0)
+            note(t.at, "the shutter is open for " + reader_number(close - open) + " s: pbrt-v4 scales its image by that, iris does not");
         ps.finish();
         m_camera_at = t.at;
     }
@@ -642,10 +703,11 @@ private:
                 fail(p->at, "a crop window is not supported (render the whole image and crop it: iris-image crop)");
         }
         if (parameter* p = ps.find("pixelbounds")) fail(p->at, "pixel bounds are not supported (iris-image crop)");
+        if (parameter* p = ps.find("filename")) note(p->at, "Film \"filename\" ignored (iris-render -o names the output)", false);
         for (auto& p : ps.list)
             if (!p.used) {
                 p.used = true;
-                note(p.at, "Film parameter \"" + p.name + "\" ignored (iris writes linear sRGB to iris-render -o)");
+                note(p.at, "Film parameter \"" + p.name + "\" ignored (iris writes linear sRGB, exposure 1, to iris-render -o)");
             }
     }
 
@@ -653,15 +715,23 @@ private:
         m_world = true;
         m_coordinate_systems["world"] = glm::dmat4(1.0);
         // the camera: pbrt-v4's camera-from-world at `Camera` (identity if there was none)
+        if (!(std::fabs(glm::determinant(m_camera_from_world)) > 0.0))
+            fail(m_camera_at, "the camera's transform is singular (a zero scale?)");
+        if (!m_filter_given)
+            note(t.at, "no PixelFilter: pbrt-v4's default Gaussian filter approximated by iris's pixel box");
         const glm::dmat4 w = glm::inverse(m_camera_from_world);
         const glm::dvec3 eye(w[3]), right = glm::normalize(glm::dvec3(w * glm::dvec4(1, 0, 0, 0))),
             up = glm::normalize(glm::dvec3(w * glm::dvec4(0, 1, 0, 0))), dir = glm::normalize(glm::dvec3(w * glm::dvec4(0, 0, 1, 0)));
         // iris's image right is dir × up: mirror the world when pbrt-v4's frame is the other way
         if (glm::dot(glm::cross(dir, up), right) < 0.0) m_mirror = glm::scale(glm::dmat4(1.0), glm::dvec3(-1.0, 1.0, 1.0));
         const glm::dvec3 e = m_mirror * glm::dvec4(eye, 1.0), d = m_mirror * glm::dvec4(dir, 0.0), u = m_mirror * glm::dvec4(up, 0.0);
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(e[i]) || !std::isfinite(d[i]) || !std::isfinite(u[i]) || std::fabs(e[i]) > max_coordinate)
+                fail(m_camera_at, "the camera's position or orientation is not finite, or beyond ±1e7");
+        if (!(glm::length(glm::cross(d, u)) > 1e-6)) fail(m_camera_at, "the camera's up and view directions are parallel");
         auto& c = m_doc.desc.camera;
         c.position = glm::vec3(e);
-        c.look_at = glm::vec3(e + d);
+        c.look_at = glm::vec3(e + d * std::max(1.0, glm::length(e)));  // far enough that float keeps the aim
         c.up = glm::vec3(u);
         // pbrt-v4's fov spans the shorter side, iris's the height
         double fov = m_fov;
@@ -672,16 +742,28 @@ private:
         (void)t;
     }
 
-    void include(const token& t) {
+    void include(const token& t, bool import) {
         const std::string n = quoted(t.at, "the file to include");
         if (static_cast<int>(m_files.size()) > max_include_depth) fail(t.at, "includes nested more than 32 deep");
-        std::filesystem::path p(n);
-        if (p.is_relative()) p = m_files.back().dir() / p;
+        const std::filesystem::path p = resolve(n);
         if (p.extension() == ".gz") fail(t.at, "compressed files are not supported: '" + n + "'");
         for (const auto& f : m_files)
             if (f.file() == p.string()) fail(t.at, "'" + n + "' includes itself (through " + m_files.back().file() + ")");
         std::string text = read_file(p, t.at, "included file", m_options.read_files);
+        m_included_bytes += text.size();
+        if (++m_included > max_included_files || m_included_bytes > max_included_bytes)
+            fail(t.at, "more than 10 000 included files or 4 GiB of included text: refused");
+        if (import) {
+            m_imports.push_back({m_files.size(), m_stack.size() + 1});
+            m_stack.push_back({m_state, t.at, opened::import});
+        }
         m_files.emplace_back(std::move(text), p.string(), p.parent_path());
+    }
+
+    /// A file a scene names: relative to the main file's directory, as pbrt-v4 resolves it.
+    std::filesystem::path resolve(const std::string& name) const {
+        const std::filesystem::path p(name);
+        return p.is_relative() ? m_base / p : p;
     }
 
     // -- spectra of parameters
@@ -779,8 +861,7 @@ private:
     }
 
     spectrum_value spd_file(const parameter& p, const std::string& n) {
-        std::filesystem::path path(n);
-        if (path.is_relative()) path = m_files.back().dir() / path;
+        const std::filesystem::path path = resolve(n);
         const std::string text = read_file(path, p.at, "spectrum file", m_options.read_files);
         std::vector<double> xs;
         std::istringstream in(text);
@@ -806,10 +887,30 @@ private:
     tabulated_spectrum light_radiance(const spectrum_value& s, double scale, const location& at) {
         for (double v : s.table.values())
             if (v < 0.0) fail(at, "the light's spectrum is negative somewhere (" + reader_number(v) + ")");
-        if (s.rgb_illuminant) return s.table.scaled(scale);
-        const double y = luminance(s.table);
-        if (!(y > 0.0)) fail(at, "the light's spectrum has no luminance (its Y over 360-830 nm is 0)");
-        return s.table.scaled(scale / y);
+        double k = scale;
+        if (!s.rgb_illuminant) {
+            const double y = luminance(s.table);
+            if (!(y > 0.0)) fail(at, "the light's spectrum has no luminance (its Y over 360-830 nm is 0)");
+            k = scale / y;
+        }
+        tabulated_spectrum out = s.table.scaled(k);
+        for (double v : out.values())
+            if (!(std::fabs(v) < 1e30)) fail(at, "the light's radiance overflows (its scale is too large)");
+        return out;
+    }
+
+    /// A point of a light in iris's world: finite and within ±1e7.
+    glm::vec3 light_point(const glm::dmat4& m, const glm::dvec3& p, const location& at) {
+        const glm::dvec3 w = m * glm::dvec4(p, 1.0);
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(w[i]) || std::fabs(w[i]) > max_coordinate) fail(at, "a light's position is beyond ±1e7");
+        return glm::vec3(w);
+    }
+    /// A light's direction in iris's world: unit, from a finite non-zero vector.
+    glm::vec3 light_direction(const glm::dvec3& d, const location& at, const std::string& what) {
+        const double l = glm::length(d);
+        if (!(l > 0.0) || !std::isfinite(l)) fail(at, what + " has no direction (from and to are the same point, or too far apart)");
+        return glm::vec3(d / l);
     }
 
     double light_scale(parameters& ps, const location& at) {
@@ -829,14 +930,16 @@ private:
     }
 
     // -- materials
-    float roughness(parameters& ps, bool remap_default, const location& at) {
-        const double r = ps.number("roughness", 0.0);
-        const double u = ps.number("uroughness", r), v = ps.number("vroughness", r);
+    float roughness(parameters& ps, bool remap_default, const location& at, const std::string& prefix = "") {
+        const double r = ps.number(prefix + "roughness", 0.0);
+        const double u = ps.number(prefix + "uroughness", r), v = ps.number(prefix + "vroughness", r);
         const bool remap = ps.boolean("remaproughness", remap_default);
         if (u < 0.0 || v < 0.0) fail(at, "a roughness must be at least 0");
         if (u != v) note(at, "anisotropic roughness (" + reader_number(u) + ", " + reader_number(v) + ") approximated by its mean: iris's GGX is isotropic");
         const double x = 0.5 * (u + v);
-        return static_cast<float>(remap ? std::sqrt(x) : x);  // pbrt-v4's RoughnessToAlpha: √roughness
+        const double alpha = remap ? std::sqrt(x) : x;  // pbrt-v4's RoughnessToAlpha: √roughness
+        if (!(alpha <= 1.0)) fail(at, "a GGX α above 1 (" + reader_number(alpha) + ") is not supported");
+        return static_cast<float>(alpha);
     }
 
     std::uint32_t material(const std::string& type, parameters& ps, const std::string& name, const location& at) {
@@ -897,10 +1000,7 @@ private:
                 outside::clamp);
             c.ior = std::move(ior);
             if (type == "coatedconductor") {
-                const double r = ps.number("conductor.roughness", 0.0);
-                const double u = ps.number("conductor.uroughness", r), v = ps.number("conductor.vroughness", r);
-                const bool remap = ps.boolean("remaproughness", true);
-                c.roughness = static_cast<float>(remap ? std::sqrt(0.5 * (u + v)) : 0.5 * (u + v));
+                c.roughness = roughness(ps, true, at, "conductor.");
                 for (const char* p : {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta",
                                       "thickness", "albedo", "g", "maxdepth", "nsamples"})
                     ps.find(p);
@@ -968,8 +1068,9 @@ private:
             const auto s = spd("I");
             const glm::dvec3 from = ps.point("from", {0, 0, 0});
             ps.finish();
+            const glm::vec3 at = light_point(m, from, t.at);
             const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
-            m_doc.desc.lights.push_back(light::point{glm::vec3(m * glm::dvec4(from, 1.0)), e});
+            m_doc.desc.lights.push_back(light::point{at, e});
         } else if (type == "spot") {
             const auto s = spd("I");
             const glm::dvec3 from = ps.point("from", {0, 0, 0}), to = ps.point("to", {0, 0, 1});
@@ -977,24 +1078,24 @@ private:
             ps.finish();
             if (!(cone > 0.0 && cone <= 180.0) || !(delta >= 0.0 && delta < cone))
                 fail(t.at, "a spot light needs 0 < coneangle <= 180 and 0 <= conedeltaangle < coneangle");
-            const glm::dvec3 p = m * glm::dvec4(from, 1.0), q = m * glm::dvec4(to, 1.0);
-            if (!(glm::length(q - p) > 0.0)) fail(t.at, "a spot light's from and to are the same point");
+            const glm::vec3 p = light_point(m, from, t.at), q = light_point(m, to, t.at);
             const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
             light::spot l;
-            l.position = glm::vec3(p);
-            l.direction = glm::vec3(glm::normalize(q - p));
+            l.position = p;
+            l.direction = light_direction(glm::dvec3(q) - glm::dvec3(p), t.at, "a spot light");
             l.cos_total_width = static_cast<float>(std::cos(glm::radians(cone)));
             l.cos_falloff_start = static_cast<float>(std::cos(glm::radians(cone - delta)));
+            if (!(l.cos_falloff_start < 1.0f) || !(l.cos_total_width > -1.0f))
+                fail(t.at, "a spot light's cone is too narrow or too wide (0.01 < coneangle - conedeltaangle, coneangle < 180)");
             l.emitter = e;
             m_doc.desc.lights.push_back(l);
         } else if (type == "distant") {
             const auto s = spd("L");
             const glm::dvec3 from = ps.point("from", {0, 0, 0}), to = ps.point("to", {0, 0, 1});
             ps.finish();
-            const glm::dvec3 dir = m * glm::dvec4(to - from, 0.0);  // the light travels from → to
-            if (!(glm::length(dir) > 0.0)) fail(t.at, "a distant light's from and to are the same point");
+            const glm::vec3 dir = light_direction(glm::dvec3(m * glm::dvec4(to - from, 0.0)), t.at, "a distant light");  // from → to
             const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
-            m_doc.desc.lights.push_back(light::distant{glm::vec3(glm::normalize(dir)), e});
+            m_doc.desc.lights.push_back(light::distant{dir, e});
         } else if (type == "infinite") {
             if (ps.find("filename")) fail(t.at, "an environment image is not supported by the importer yet (docs/pbrt-import.md)");
             if (ps.find("portal")) fail(t.at, "portals are not supported");
@@ -1050,21 +1151,32 @@ private:
             if (parameter* q = ps.find("N")) {
                 const auto& nv = ps.expect(*q, {"normal", "normal3"}, 3 * n).numbers;
                 for (std::size_t i = 0; i < nv.size(); i += 3) mesh->normals.emplace_back(nv[i], nv[i + 1], nv[i + 2]);
+                // pbrt-v4 turns a triangle's geometric normal toward its shading normals, iris keeps
+                // the winding's: say where they disagree (the inside of glass, the side a light emits)
+                std::size_t against = 0;
+                for (const auto& tri : mesh->triangles) {
+                    const auto& P = mesh->positions;
+                    const glm::vec3 ng = glm::cross(P[tri[1]] - P[tri[0]], P[tri[2]] - P[tri[0]]);
+                    const glm::vec3 ns = mesh->normals[tri[0]] + mesh->normals[tri[1]] + mesh->normals[tri[2]];
+                    against += glm::dot(ng, ns) < 0.0f;
+                }
+                if (against > 0)
+                    note(q->at, std::to_string(against) + " of " + std::to_string(mesh->triangles.size()) +
+                                    " triangles wind against their \"normal N\": pbrt-v4 orients them by N, iris by the winding");
             }
             if (parameter* q = ps.find("uv")) {
                 const auto& uv = ps.expect(*q, {"point2", "float"}, 2 * n).numbers;
                 for (std::size_t i = 0; i < uv.size(); i += 2) mesh->uvs.emplace_back(uv[i], uv[i + 1]);
             }
             if (parameter* q = ps.find("S")) note(q->at, "\"vector3 S\" (tangents) ignored");
-            if (parameter* q = ps.find("faceIndices")) note(q->at, "\"integer faceIndices\" ignored");
+            if (parameter* q = ps.find("faceIndices")) note(q->at, "\"integer faceIndices\" ignored", false);
             s.type = shape_type::triangles;
             s.triangles = std::move(mesh);
         } else if (type == "plymesh") {
             const std::string f = ps.string("filename", "");
             if (f.empty()) fail(t.at, "Shape \"plymesh\" has no \"string filename\"");
             if (ps.find("displacement") || ps.find("edgelength")) fail(t.at, "displaced meshes are not supported");
-            std::filesystem::path p(f);
-            if (p.is_relative()) p = m_files.back().dir() / p;
+            const std::filesystem::path p = resolve(f);
             if (p.extension() == ".gz") fail(t.at, "compressed PLY files are not supported yet: '" + f + "'");
             s.type = shape_type::mesh;
             s.file = p;
@@ -1075,14 +1187,14 @@ private:
                 fail(t.at, "partial spheres (zmin, zmax, phimax) are not supported");
             s.type = shape_type::sphere;
             s.size = glm::vec3(static_cast<float>(r), 0.0f, 0.0f);
-            note(t.at, "sphere tessellated into 36 480 triangles");
+            note(t.at, "sphere tessellated into 36 480 triangles", false);
         } else if (type == "disk") {
             const double r = ps.number("radius", 1.0), inner = ps.number("innerradius", 0.0), h = ps.number("height", 0.0);
             if (!(r > 0.0) || !(inner >= 0.0 && inner < r)) fail(t.at, "a disk needs radius > innerradius ≥ 0");
             if (ps.number("phimax", 360.0) != 360.0) fail(t.at, "partial disks (phimax) are not supported");
             s.type = shape_type::disk;
             s.size = glm::vec3(static_cast<float>(r), static_cast<float>(inner), static_cast<float>(h));
-            note(t.at, "disk tessellated into 192 segments");
+            note(t.at, "disk tessellated into 192 segments", false);
         } else {
             fail(t.at, "Shape \"" + type + "\" is not supported (iris: trianglemesh, plymesh, sphere, disk, bilinearmesh)");
         }
@@ -1090,6 +1202,7 @@ private:
         s.material = current_material();
         if (m_state.area_light) s.emitter = m_state.area_light;
         s.name = type + "." + std::to_string(m_doc.shapes.size());
+        s.file_name = t.at.file;
         // pbrt-v4's normal is the object-space winding's, carried by the transform as a normal
         // and turned by ReverseOrientation (its handedness rule undoes the turn a mirroring
         // transform gives the winding); iris's `transformed` keeps the winding outward under a
@@ -1102,17 +1215,49 @@ private:
             return;
         }
         s.transform = glm::mat4(world(m_state.ctm));
+        add_shape(std::move(s), t.at);
+    }
+
+    /// The triangles a shape will have (a PLY file's are not known yet: 0).
+    static std::size_t triangle_count(const shape_spec& s) {
+        switch (s.type) {
+            case shape_type::triangles: return s.triangles ? s.triangles->triangles.size() : 0;
+            case shape_type::sphere: return 36480;
+            case shape_type::disk: return s.size.y > 0.0f ? 384 : 192;
+            default: return 0;
+        }
+    }
+    void add_shape(shape_spec s, const location& at) {
+        m_triangles += triangle_count(s);
+        if (m_triangles > max_triangles) fail(at, "the scene would have more than 2^28 triangles: refused");
         m_doc.shapes.push_back(std::move(s));
     }
 
     pbrt_import_options m_options;
     scene_document m_doc;
     std::vector<tokenizer> m_files;
-    std::vector<std::string> m_include_names;
+    struct import_entry {
+        std::size_t files = 0, stack = 0;  ///< the file stack's size without it; the stack's with its entry
+        bool ended = false;                ///< its file has been read to the end
+        location at;                       ///< where it ended
+    };
+    std::vector<import_entry> m_imports;
+    location m_last;          ///< the last token read (where the input ended, for messages)
+    std::size_t m_included = 0, m_included_bytes = 0;  ///< every file read, for the budget
+    std::filesystem::path m_base;  ///< the main file's directory: relative paths resolve here (pbrt-v4's rule)
+    std::size_t m_triangles = 0;   ///< the triangles the shapes will have, for the budget
     std::optional<token> m_peeked;
     location m_end;
     graphics_state m_state;
-    std::vector<std::pair<graphics_state, location>> m_stack;
+    /// What opened a stack entry: AttributeBegin (and TransformBegin, which pbrt-v4 reads as
+    /// it), ObjectBegin, or an Import (whose state changes stay inside the imported file).
+    enum class opened { attribute, object, import };
+    struct stack_entry {
+        graphics_state state;
+        location at;
+        opened kind = opened::attribute;
+    };
+    std::vector<stack_entry> m_stack;
     std::map<std::string, glm::dmat4> m_coordinate_systems;
     std::map<std::string, std::uint32_t> m_named_materials;
     std::map<std::string, std::vector<shape_spec>> m_objects;
@@ -1123,6 +1268,7 @@ private:
     glm::dmat4 m_mirror{1.0};
     double m_fov = 90.0;
     bool m_world = false;
+    bool m_filter_given = false;
     std::vector<std::string> m_notes;
 };
 

@@ -49,6 +49,7 @@ struct shape_spec {
     std::string name;
     std::string pointer;  ///< JSON pointer, e.g. "/shapes/3", for messages
     std::size_t line = 0; ///< 1-based line of the shape in the file (0 if unknown)
+    std::string file_name;  ///< the file the shape was read from, if not the document's (a pbrt-v4 Include)
     shape_type type = shape_type::box;
     glm::vec3 size{1.0f};
     float wall = 0.0f;
@@ -118,8 +119,8 @@ struct pbrt_import_options {
 
 /// \brief Parse a pbrt-v4 scene (docs/pbrt-import.md): the subset iris renders, everything
 /// else an error at `FILE:LINE:COLUMN`, or a note in `desc.notes` where an approximation is
-/// reasonable (an error with `strict`). `Include`/`Import` and mesh files are resolved
-/// against `base_dir`, then against the including file's directory. \throws
+/// reasonable (an error with `strict`). `Include`/`Import`, .spd and mesh files are resolved
+/// against `base_dir` (the main file's directory), as pbrt-v4 resolves them. \throws
 /// iris::scene::error
 scene_document parse_pbrt_document(std::string_view text, const std::string& source_name,
                                    const std::filesystem::path& base_dir, const pbrt_import_options& options = {});
