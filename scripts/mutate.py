@@ -353,7 +353,7 @@ MUTATIONS = [
        "if (glm::dot(glm::cross(dir, up), right) > 1e30) m_mirror")],
      ["scene_test"], "PbrtImport"),
     ("pbrt-import-light-luminance-not-divided-out",
-     [("modules/scene/src/pbrt_import.cpp", "        return s.table.scaled(scale / y);", "        return s.table.scaled(scale);")],
+     [("modules/scene/src/pbrt_import.cpp", "            k = scale / y;", "            k = scale;")],
      ["scene_test"], "PbrtImport"),
     ("pbrt-import-reverse-orientation-ignored",
      [("modules/scene/src/pbrt_import.cpp", "        s.flip = m_state.reverse_orientation;", "        s.flip = false;")],
