@@ -754,7 +754,7 @@ private:
         if (++m_included > max_included_files || m_included_bytes > max_included_bytes)
             fail(t.at, "more than 10 000 included files or 4 GiB of included text: refused");
         if (import) {
-            m_imports.push_back({m_files.size(), m_stack.size() + 1});
+            m_imports.push_back({m_files.size(), m_stack.size() + 1, false, t.at});
             m_stack.push_back({m_state, t.at, opened::import});
         }
         m_files.emplace_back(std::move(text), p.string(), p.parent_path());
