@@ -359,7 +359,7 @@ MUTATIONS = [
      [("modules/scene/src/pbrt_import.cpp", "        s.flip = m_state.reverse_orientation;", "        s.flip = false;")],
      ["scene_test"], "PbrtImport"),
     ("pbrt-import-roughness-not-remapped",
-     [("modules/scene/src/pbrt_import.cpp", "return static_cast<float>(remap ? std::sqrt(x) : x);", "return static_cast<float>(x);")],
+     [("modules/scene/src/pbrt_import.cpp", "const double alpha = remap ? std::sqrt(x) : x;", "const double alpha = x;\n        (void)remap;")],
      ["scene_test"], "PbrtImport"),
     ("pbrt-import-unread-parameters-accepted",
      [("modules/scene/src/pbrt_import.cpp", "            if (!p.used)\n                fail(p.at,", "            if (false)\n                fail(p.at,")],
