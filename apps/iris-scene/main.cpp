@@ -91,6 +91,12 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
                                iris::is_dispersive(d.ior) ? " dispersive" : "",
                                d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"));
         }
+        std::string operator()(const iris::material::coated& c) const {
+            return fmt::format("coated eta={:g} {} thickness={:g} max_depth={}{} over {}", c.eta,
+                               c.roughness > 0.0f ? fmt::format("roughness={:g}", c.roughness) : std::string("smooth"),
+                               c.thickness, c.max_depth, c.samples > 1 ? fmt::format(" samples={}", c.samples) : std::string(),
+                               std::visit(*this, c.base));
+        }
     };
     return std::visit(summary{s}, m);
 }

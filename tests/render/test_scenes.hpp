@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -91,16 +92,19 @@ inline scene_desc furnace(double albedo = 0.8) {
 /// A lossless dielectric in a uniform radiance field leaves it uniform at every
 /// wavelength (radiance invariance, with the 1/η² scaling across the interface), so the
 /// camera still sees Y = 1 / (1 − a) — through the glass as well.
-inline scene_desc furnace_with_glass(double albedo, ior_model ior, float roughness = 0.0f) {
+inline scene_desc furnace_with_cube(double albedo, material_desc m, const std::string& name) {
     scene_desc s = furnace(albedo);
     s.camera.look_at = {0.0f, 0.0f, 0.0f};
     s.camera.position = {0.9f, 0.8f, 0.85f};
-    s.materials.push_back(material::dielectric{ior, roughness});
-    s.material_names.push_back("glass");
+    s.materials.push_back(std::move(m));
+    s.material_names.push_back(name);
     triangle_mesh cube = inward_box({-0.3f, -0.3f, -0.3f}, {0.3f, 0.3f, 0.3f});
     for (auto& t : cube.triangles) std::swap(t[1], t[2]);  // outward
-    s.shapes.push_back({"glass-cube", cube, 1, std::nullopt});
+    s.shapes.push_back({name + "-cube", cube, 1, std::nullopt});
     return s;
+}
+inline scene_desc furnace_with_glass(double albedo, ior_model ior, float roughness = 0.0f) {
+    return furnace_with_cube(albedo, material::dielectric{ior, roughness}, "glass");
 }
 
 /// \brief A diffuse floor (albedo 0.5, 6 × 6) lit from 0.8 above by a small one-sided square

@@ -255,6 +255,36 @@ TEST(Bdpt, AgreesWithThePathTracerThroughRoughDispersiveGlass) {
     EXPECT_LE(power, 0.035) << "the test has lost its power";  // measured 3.0 %
 }
 
+// Coated materials, whose vertices have a delta lobe (the smooth coat's mirror) beside a
+// non-delta one (iris/render/materials/coated.hpp): a vertex continued by the mirror is delta
+// in the weights of the path it continues, but strategies still join it by its non-delta
+// part. The caustic scene with a smooth coat over the diffuse floor and a smooth coat over
+// rough gold for the cube, the whole render against the path tracer: 4 × 4 regions × 3
+// channels, α = 0.001.
+TEST(Bdpt, AgreesWithThePathTracerOnCoatedMaterials) {
+    const std::string json = R"({"camera": {"position": [0, 2.2, 2.2], "look_at": [0, 0, 0], "fov": 50, "resolution": [32, 24]},
+      "materials": {"r": {"type": "coated", "base": {"type": "diffuse", "reflectance": 0.6}, "thickness": 0.05},
+                    "black": {"type": "diffuse", "reflectance": 0},
+                    "gold": {"type": "coated", "base": {"type": "conductor", "metal": "Au", "roughness": 0.2}}},
+      "emitters": {"l": {"spd": "D65", "luminance": 20}},
+      "shapes": [{"type": "quad", "size": [3, 3], "material": "r"},
+                 {"type": "quad", "size": [1, 1], "material": "black", "emitter": "l",
+                  "transform": [{"rotate": {"axis": [1, 0, 0], "degrees": 180}}, {"translate": [0, 1.0, 0]}]},
+                 {"type": "cube", "size": 0.5, "material": "gold", "transform": [{"translate": [0.1, 0.45, 0.05]}]}]})";
+    const auto s = iris::scene::parse_scene(json, "coated", ".");
+    iris::renderer::options opt;
+    opt.preset = "hwss";
+    opt.spp = 4096;
+    opt.seed = 27;
+    const auto pt = iris_test::grid_estimates(s, opt, 4, 4);
+    const auto bd = iris_test::grid_estimates(s, bdpt_options("hwss", 2048, 28), 4, 4);
+    const double z_max = iris_test::sidak_z(0.001, 16 * 3);
+    compare(bd, pt, z_max, "bdpt vs path, coated");
+    const double power = image_power(bd, pt, z_max);
+    std::printf("a relative difference of the image's Y of %.2f %% is detected with 90 %% power\n", 100.0 * power);
+    EXPECT_LE(power, 0.05) << "the test has lost its power";
+}
+
 // The same through a smooth (delta) dispersive cube: strategies whose connection has a delta
 // end are not counted (nor can they be sampled), the hero's refracted direction is the only
 // one (the other wavelengths' densities are 0 there), and the caustic on the floor comes from

@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <iris/render/materials/coated.hpp>
 #include <iris/scene/scene.hpp>
 #include <iris/spectrum/color.hpp>
 #include <iris/spectrum/named.hpp>
@@ -274,17 +275,53 @@ TEST(PbrtImport, TransformEndAndImportKeepTheirStateInside) {
 }
 
 TEST(PbrtImport, ApproximationsAreNotesAndErrorsWhenStrict) {
-    const std::string text = scene("Material \"coateddiffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ] \"float roughness\" 0.1\n"
+    const std::string text = scene("Material \"coateddiffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ] \"spectrum eta\" \"glass-BK7\"\n"
                                    "Shape \"sphere\"\n");
     const auto s = import(text);
     bool noted = false;
-    for (const auto& n : iris::scene::approximations(s)) noted |= n.find("coateddiffuse approximated by its diffuse base") != std::string::npos;
+    for (const auto& n : iris::scene::approximations(s)) noted |= n.find("approximated by its value at 550 nm") != std::string::npos;
     EXPECT_TRUE(noted);
     const std::string e = error_of("PixelFilter \"box\"\n" + text, {.strict = true});
-    EXPECT_NE(e.find("test.pbrt:10:1: material 'material.1': coateddiffuse approximated by its diffuse base"), std::string::npos) << e;
+    EXPECT_NE(e.find("test.pbrt:10:1: material 'material.1': the coat's spectral \"eta\" approximated by its value at 550 nm"), std::string::npos) << e;
     // without a PixelFilter, pbrt-v4's default Gaussian is the first approximation
     EXPECT_NE(error_of(text, {.strict = true}).find("no PixelFilter: pbrt-v4's default Gaussian filter approximated"), std::string::npos);
     EXPECT_NE(e.find("(an error under --strict)"), std::string::npos) << e;
+}
+
+TEST(PbrtImport, CoatedMaterialsKeepTheirLayer) {
+    auto s = import(scene("Material \"coateddiffuse\" \"rgb reflectance\" [ 0.4 0.2 0.2 ] \"float roughness\" 0.04 \"float eta\" 1.6\n"
+                          "  \"float thickness\" 0.2 \"integer maxdepth\" 7 \"integer nsamples\" 3 \"float g\" 0.3\nShape \"sphere\"\n"));
+    const auto* c = std::get_if<iris::material::coated>(&s.materials[s.shapes.back().material]);
+    ASSERT_NE(c, nullptr);
+    EXPECT_TRUE(std::holds_alternative<iris::material::diffuse>(c->base));
+    EXPECT_FLOAT_EQ(c->roughness, 0.2f);  // √0.04: pbrt-v4 remaps by default
+    EXPECT_FLOAT_EQ(c->eta, 1.6f);
+    EXPECT_FLOAT_EQ(c->thickness, 0.2f);
+    EXPECT_EQ(c->max_depth, 7);
+    EXPECT_EQ(c->samples, 3);
+    EXPECT_FLOAT_EQ(c->internal_reflectance, iris::coated_internal_reflectance(1.6f, 0.2f));  // filled by the loader
+    s = import(scene("Material \"coatedconductor\" \"spectrum conductor.eta\" \"metal-Au-eta\" \"spectrum conductor.k\" \"metal-Au-k\"\n"
+                     "  \"float interface.roughness\" 0.01 \"float conductor.roughness\" 0.09 \"bool remaproughness\" true\nShape \"sphere\"\n"));
+    c = std::get_if<iris::material::coated>(&s.materials[s.shapes.back().material]);
+    ASSERT_NE(c, nullptr);
+    const auto& base = std::get<iris::material::conductor>(c->base);
+    EXPECT_FLOAT_EQ(c->roughness, 0.1f);
+    EXPECT_FLOAT_EQ(base.roughness, 0.3f);
+    EXPECT_NEAR(base.ior->eta(600.0), iris::find_metal("Au")->eta_spectrum()(600.0), 1e-9);
+    EXPECT_FLOAT_EQ(c->eta, 1.5f);       // pbrt-v4's default
+    EXPECT_FLOAT_EQ(c->thickness, 0.01f);
+    EXPECT_EQ(c->max_depth, 10);
+    for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+             {"Material \"coateddiffuse\" \"rgb albedo\" [ 0.5 0.5 0.5 ]\n", "a scattering medium in the coat (\"albedo\" > 0) is not supported"},
+             {"Material \"coateddiffuse\" \"float thickness\" -1\n", "\"float thickness\" must lie in [0, 1000]"},
+             {"Material \"coateddiffuse\" \"float eta\" 0.8\n", "the coat's \"eta\" must lie in [1, 4], it is 0.8"},
+             {"Material \"coatedconductor\" \"integer maxdepth\" 0\n", "\"integer maxdepth\" must lie in [1, 100]"},
+             {"Material \"coateddiffuse\" \"integer nsamples\" 1000\n", "\"integer nsamples\" must lie in [1, 256]"},
+             {"Material \"coateddiffuse\" \"float sigma\" 1\n", "parameter \"float sigma\" of Material \"coateddiffuse\" is not supported"}}) {
+        SCOPED_TRACE(text);
+        const std::string e = error_of(scene(text + "Shape \"sphere\"\n"));
+        EXPECT_NE(e.find(message), std::string::npos) << e;
+    }
 }
 
 TEST(PbrtImport, IncludesAreReadRelativeToTheMainFileAndCyclesAreRefused) {

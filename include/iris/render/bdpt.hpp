@@ -98,15 +98,19 @@ public:
         sampled_spectrum<C> pdf_fwd; ///< p→ (area; y₀: selection × position)
         sampled_spectrum<C> pdf_rev; ///< p← (area), set when y_{i+1} is sampled
         std::uint32_t material = 0;
-        bool delta = false;
+        bool delta = false;        ///< y_{i+1} was sampled by a delta lobe
+        bool connectible = true;  ///< its BSDF is not delta as a whole (a delta one joins with zero)
     };
     /// \brief A camera subpath vertex (z₀ is the pinhole).
     struct camera_vertex {
         glm::vec3 p{0.0f}, ng{0.0f};
         sampled_spectrum<C> pdf_fwd, pdf_rev;  ///< p← (area: its own direction) and p→, set when z_{i+1} is sampled
-        bool delta = false;
+        bool delta = false;  ///< z_{i+1} was sampled by a delta lobe (before: whether its BSDF is delta)
     };
-    /// \brief One vertex of a full path, for the weight: p→, p←, and whether it is delta.
+    /// \brief One vertex of a full path, for the weight: p→, p←, and whether it is delta — the
+    /// lobe that continued the path there; the two vertices a strategy joins are not (a BSDF
+    /// with delta and non-delta lobes, iris/render/materials/coated.hpp, is joined by its
+    /// non-delta part whatever lobe continued its own subpath).
     struct mis_entry {
         sampled_spectrum<C> pl, pe;
         bool delta = false;
@@ -214,8 +218,9 @@ public:
                 wi = glm::normalize(vx.to_world(s->wi));
                 // p← of z_{i−1}: the density of sampling ωo from ωi here
                 const std::size_t i = ws.camera.size() - 1;
+                ws.camera[i].delta = s->delta;
                 if (i >= 2) {
-                    const sampled_spectrum<C> rev = B::delta ? s->pdf : bxdf.template pdf<C>(s->wi, lo, hero);
+                    const sampled_spectrum<C> rev = s->delta ? s->pdf : bxdf.template pdf<C>(s->wi, lo, hero);
                     ws.camera[i - 1].pdf_rev = to_area(rev, ws.camera[i - 1].p, ws.camera[i - 1].ng, vx.sp.p);
                 }
                 beta *= s->f_cos / s->pdf[0];
@@ -405,6 +410,7 @@ private:
                 emission_ref albedo;
                 const sampled_spectra<C> hero = m_hero.at_vertex(bxdf, m_scene, shape.material, vx.uv, wl, albedo);
                 ws.light.back().delta = B::delta;
+                ws.light.back().connectible = !B::delta;
                 lterm.enter(bxdf, shape.material, albedo);
                 const glm::vec2 u = rng.next2();
                 const float u_lobe = rng.next();
@@ -422,7 +428,8 @@ private:
                 beta *= f * (shading / s->pdf[0]);
                 lterm.follow_adjoint(bxdf, lo, *s, shading);
                 const std::size_t i = ws.light.size() - 1;
-                const sampled_spectrum<C> rev = B::delta ? s->pdf : bxdf.template pdf<C>(s->wi, lo, hero);
+                ws.light[i].delta = s->delta;
+                const sampled_spectrum<C> rev = s->delta ? s->pdf : bxdf.template pdf<C>(s->wi, lo, hero);
                 ws.light[i - 1].pdf_rev = to_area(rev, ws.light[i - 1].si.sp.p, ws.light[i - 1].si.ng, vx.sp.p);
                 pdf_dir = s->pdf;
                 return true;
@@ -488,7 +495,7 @@ private:
         for (std::size_t s = 2; s <= ws.light.size(); ++s) {
             if (!kept(s, 1)) continue;
             const light_vertex& y = ws.light[s - 1];
-            if (y.delta) continue;
+            if (!y.connectible) continue;
             const auto link = detail::to_camera(m_camera, y.si.sp, y.si.ng);
             if (!link) continue;
             const light_eval ye = eval_light_vertex(ws, s - 1, link->w, wl, yterm);
@@ -496,6 +503,7 @@ private:
             ++rays;
             if (tracer.occluded(link->shadow.origin, link->shadow.direction, link->shadow.t_max)) continue;
             push_light_vertices(ws, s);
+            ws.path[s - 1].delta = false;  // joined, whatever lobe continued its subpath
             // the camera's side: y_{s−1} from the pinhole (pixel pdf ÷ paths), y_{s−2} from y_{s−1}
             ws.path[s - 1].pe = sampled_spectrum<C>(link->g * m_inv_paths * std::fabs(glm::dot(link->w, y.si.ng)));
             ws.path[s - 2].pe = to_area(ye.pdf_rev, ws.light[s - 2].si.sp.p, ws.light[s - 2].si.ng, y.si.sp.p);
@@ -609,7 +617,7 @@ private:
         for (std::size_t s = 2; s <= ws.light.size() && s <= max_s; ++s) {
             if (!kept(s, t)) continue;
             const light_vertex& y = ws.light[s - 1];
-            if (y.delta) continue;
+            if (!y.connectible) continue;
             glm::vec3 w = y.si.sp.p - vx.sp.p;
             const float d2 = glm::dot(w, w);
             if (!(d2 > 0.0f)) continue;
@@ -626,6 +634,7 @@ private:
             const shadow_segment sh = shadow_ray_between(vx.sp, vx.ng, y.si.sp, y.si.ng);
             if (tracer.occluded(sh.origin, sh.direction, sh.t_max)) continue;
             push_light_vertices(ws, s);
+            ws.path[s - 1].delta = false;  // joined, whatever lobe continued its subpath
             ws.path[s - 1].pe = to_area(fz.pdf, y.si.sp.p, y.si.ng, vx.sp.p);
             ws.path[s - 2].pe = to_area(ye.pdf_rev, ws.light[s - 2].si.sp.p, ws.light[s - 2].si.ng, y.si.sp.p);
             push_camera_vertices(ws, t);

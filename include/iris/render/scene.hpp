@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -105,9 +106,40 @@ struct conductor {
     float roughness = 0.0f;
 };
 
+/// \brief A base under a clear dielectric coat (pbrt-v4's `coateddiffuse` and
+/// `coatedconductor`; docs/method.md §7): the base is a `diffuse` reflector (optionally
+/// textured) or a `conductor`; the coat has a constant index `eta` ≥ 1, GGX roughness
+/// `roughness` (smooth below `smooth_alpha`) and an absorbing thickness `thickness` (light
+/// crossing it at cos θ keeps exp(−thickness/|cos θ|), pbrt-v4's convention); light is
+/// followed through at most `max_depth` (≤ 100) crossings of the layer, as pbrt-v4's `maxdepth`,
+/// and its random walk (rough coats) is averaged over `samples` walks.
+struct coated {
+    std::variant<diffuse, conductor> base;
+    float eta = 1.5f;
+    float roughness = 0.0f;
+    float thickness = 0.01f;
+    int max_depth = 10;
+    int samples = 1;
+    /// r_i, derived: the cosine-weighted mean, over the directions leaving the base, of the
+    /// coat's internal reflectance times the round trip's transmittance exp(−2·thickness/cos θ)
+    /// (`coated_internal_reflectance`, iris/render/materials/coated.hpp). The scene loader
+    /// fills it; negative: each vertex that needs it computes it (slower, same value).
+    float internal_reflectance = -1.0f;
+};
+
 }  // namespace material
 
-using material_desc = std::variant<material::diffuse, material::dielectric, material::conductor>;
+using material_desc = std::variant<material::diffuse, material::dielectric, material::conductor, material::coated>;
+
+/// \brief The diffuse reflector of material `m` — itself, or a coat's diffuse base — or null.
+inline const material::diffuse* diffuse_part(const material_desc& m) noexcept {
+    if (const auto* d = std::get_if<material::diffuse>(&m)) return d;
+    if (const auto* c = std::get_if<material::coated>(&m)) return std::get_if<material::diffuse>(&c->base);
+    return nullptr;
+}
+inline material::diffuse* diffuse_part(material_desc& m) noexcept {
+    return const_cast<material::diffuse*>(diffuse_part(std::as_const(m)));
+}
 
 /// \brief An emitter's spectral radiance L(λ) (W·sr⁻¹·m⁻²·nm⁻¹ up to a constant),
 /// already scaled (by luminance or power) when the description is built. Emission leaves
@@ -271,6 +303,8 @@ struct scene_desc {
                 }
             } else if (const auto* c = std::get_if<material::conductor>(&materials[i])) {
                 f.has_specular |= c->roughness < smooth_alpha;
+            } else if (const auto* k = std::get_if<material::coated>(&materials[i])) {
+                f.has_specular |= k->roughness < smooth_alpha || k->eta == 1.0f;
             }
         }
         auto add = [&](const std::string& n) {

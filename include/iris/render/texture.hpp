@@ -90,14 +90,14 @@ inline std::array<tabulated_spectrum, 3> reflectance_basis() {
 /// \brief The texture weights of material `m`'s reflectance at uv, or nothing for an
 /// untextured material.
 inline std::optional<glm::vec3> texture_weights(const scene_desc& scene, const material_desc& m, glm::vec2 uv) noexcept {
-    if (const auto* d = std::get_if<material::diffuse>(&m))
+    if (const auto* d = diffuse_part(m))
         if (d->texture) return lookup(scene.textures[*d->texture], uv);
     return std::nullopt;
 }
 
 /// \brief Whether material `m` reads a texture.
 inline bool is_textured(const material_desc& m) noexcept {
-    const auto* d = std::get_if<material::diffuse>(&m);
+    const auto* d = diffuse_part(m);
     return d && d->texture.has_value();
 }
 

@@ -12,6 +12,7 @@
 
 #include "iris/exr/exr.hpp"
 #include "iris/geometry/mesh.hpp"
+#include "iris/render/materials/coated.hpp"
 #include "iris/spectrum/rgb_upsampling.hpp"
 #include "iris/scene/scene.hpp"
 
@@ -264,8 +265,10 @@ iris::scene_desc build_scene(const scene_document& doc) {
     s.textures.clear();
     for (const auto& spec : doc.textures) s.textures.push_back(read_texture(doc, spec));
     // a textured material's constant reflectance: its texture's mean (what the tools report)
-    for (auto& m : s.materials)
-        if (auto* d = std::get_if<material::diffuse>(&m); d && d->texture) {
+    for (auto& m : s.materials) {
+        if (auto* c = std::get_if<material::coated>(&m)) c->internal_reflectance = coated_internal_reflectance(c->eta, c->thickness);
+        auto* d = diffuse_part(m);
+        if (d && d->texture) {
             const auto& t = s.textures[*d->texture];
             glm::dvec3 mean(0.0);
             for (const auto& w : t.weights) mean += glm::dvec3(w);
@@ -278,6 +281,7 @@ iris::scene_desc build_scene(const scene_document& doc) {
             }
             d->reflectance = tabulated_spectrum(std::move(lambda), std::move(value), outside::clamp);
         }
+    }
 
     // power → radiance: Φ = π·A·∫L dλ per side (a Lambertian emitter's exitance is π·L);
     // the document normalised the SPD to ∫L dλ = 1 over the domain

@@ -207,7 +207,25 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
         return material::conductor{r.has("reflectance") ? detail::read_reflectance(r.at("reflectance"))
                                                         : tabulated_spectrum({360.0, 830.0}, {1.0, 1.0}, outside::clamp)};
     }
-    r.at("type").fail("unknown material type '" + type + "'; expected one of diffuse, dielectric, conductor, mirror");
+    if (type == "coated") {
+        r.expect_object({"type", "base", "eta", "roughness", "thickness", "max_depth", "samples"});
+        const reader b = r.at("base");
+        material::coated m{material::diffuse{}};
+        material_desc base = read_material(b, d, base_dir, textures);
+        if (auto* diffuse = std::get_if<material::diffuse>(&base)) m.base = std::move(*diffuse);
+        else if (auto* conductor = std::get_if<material::conductor>(&base)) m.base = std::move(*conductor);
+        else b.fail("a coat's base must be a diffuse, conductor or mirror material");
+        if (r.has("eta")) m.eta = static_cast<float>(r.at("eta").number_in(1.0, 4.0, false, false, "the coat's index of refraction"));
+        if (r.has("roughness"))
+            m.roughness = static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness"));
+        if (r.has("thickness"))
+            m.thickness = static_cast<float>(r.at("thickness").number_in(0.0, 1e3, false, false, "the coat's optical thickness"));
+        if (r.has("max_depth"))
+            m.max_depth = static_cast<int>(r.at("max_depth").integer_in(1, 100, "the layer crossings a walk may make"));
+        if (r.has("samples")) m.samples = static_cast<int>(r.at("samples").integer_in(1, 256, "random walks per evaluation"));
+        return m;
+    }
+    r.at("type").fail("unknown material type '" + type + "'; expected one of diffuse, dielectric, conductor, mirror, coated");
 }
 
 struct parsed_emitter {

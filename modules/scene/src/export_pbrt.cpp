@@ -128,6 +128,26 @@ struct material_writer {
         out += "\n    " + roughness(c.roughness);
         return out;
     }
+    std::string operator()(const material::coated& c) const {
+        const std::string layer = fmt::format("\n    \"float thickness\" [ {} ] \"integer maxdepth\" [ {} ] \"integer nsamples\" [ {} ]",
+                                              num(c.thickness), c.max_depth, c.samples);
+        if (const auto* d = std::get_if<material::diffuse>(&c.base)) {
+            std::string out = "\"string type\" [ \"coateddiffuse\" ]\n    " + (*this)(*d).substr(std::string("\"string type\" [ \"diffuse\" ]\n    ").size());
+            return out + "\n    \"float eta\" [ " + num(c.eta) + " ]\n    " + roughness(c.roughness) + layer;
+        }
+        const auto& m = std::get<material::conductor>(c.base);
+        if (!m.ior)
+            throw error(s.name, 0, "", "material '" + name +
+                                           "' is coated over a conductor given by its reflectance alone, which pbrt-v4 "
+                                           "cannot express: give it a metal's eta and k");
+        return "\"string type\" [ \"coatedconductor\" ]\n    \"spectrum conductor.eta\" " +
+               ior_spectrum(s, m.ior->eta.wavelengths(), [&](double x) { return m.ior->eta(x); }) +
+               "\n    \"spectrum conductor.k\" " + ior_spectrum(s, m.ior->k.wavelengths(), [&](double x) { return m.ior->k(x); }) +
+               fmt::format("\n    \"float conductor.roughness\" [ {} ] \"float interface.roughness\" [ {} ] "
+                           "\"float interface.eta\" [ {} ] \"bool remaproughness\" [ false ]",
+                           num(m.roughness), num(c.roughness), num(c.eta)) +
+               layer;
+    }
 };
 
 struct light_writer {

@@ -45,6 +45,60 @@ private:
     fnv1a m_h;
 };
 
+/// \brief Every field of material `x` (a new field changes its size and stops the build).
+template <class T>
+void hash_material(hasher& h, const T& x) {
+    if constexpr (std::is_same_v<T, material::dielectric>) {
+        h(x.roughness);
+        h(x.ior.index());
+        std::visit(
+            [&](const auto& n) {
+                using N = std::decay_t<decltype(n)>;
+                if constexpr (std::is_same_v<N, constant_ior>) h(n.value);
+                else if constexpr (std::is_same_v<N, cauchy_ior>) {
+                    h(n.a);
+                    h(n.b_um2);
+                } else if constexpr (std::is_same_v<N, sellmeier_ior>) {
+                    for (double v : {n.b1, n.b2, n.b3, n.c1, n.c2, n.c3}) h(v);
+                } else {
+                    static_assert(std::is_same_v<N, tabulated_ior>, "fingerprint: hash every IOR model");
+                    h(n.table);
+                }
+            },
+            x.ior);
+    } else if constexpr (std::is_same_v<T, material::diffuse>) {
+        // every field: a new one changes the size and stops the build here
+        static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<std::uint32_t>),
+                      "fingerprint: hash every field of material::diffuse");
+        h(x.reflectance);
+        if (x.texture) h(*x.texture);  // only when present: untextured scenes keep their fingerprint
+    } else if constexpr (std::is_same_v<T, material::conductor>) {
+        static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<material::conductor_ior>) +
+                                       sizeof(double),  // roughness, padded
+                      "fingerprint: hash every field of material::conductor");
+        static_assert(sizeof(material::conductor_ior) == sizeof(std::string) + 2 * sizeof(tabulated_spectrum),
+                      "fingerprint: hash every field of material::conductor_ior");
+        h(x.reflectance);
+        if (x.ior) {  // only when present: reflectance-only conductors keep their fingerprint
+            h(std::string_view(x.ior->name));
+            h(x.ior->eta);
+            h(x.ior->k);
+        }
+        if (x.roughness != 0.0f) h(x.roughness);  // only when rough: smooth conductors keep their fingerprint
+    } else if constexpr (std::is_same_v<T, material::coated>) {
+        static_assert(sizeof(T) == sizeof(std::variant<material::diffuse, material::conductor>) + 4 * sizeof(float) +
+                                       2 * sizeof(int),
+                      "fingerprint: hash every field of material::coated");
+        h(x.base.index());
+        std::visit([&](const auto& b) { hash_material(h, b); }, x.base);
+        for (float v : {x.eta, x.roughness, x.thickness, x.internal_reflectance}) h(v);
+        h(x.max_depth);
+        h(x.samples);
+    } else {
+        static_assert(sizeof(T) == 0, "fingerprint: hash every field of a new material type");
+    }
+}
+
 }  // namespace
 
 std::uint64_t fingerprint(const iris::scene_desc& scene) {
@@ -61,51 +115,7 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
     h(scene.materials.size());
     for (const auto& m : scene.materials) {
         h(m.index());
-        std::visit(
-            [&](const auto& x) {
-                using T = std::decay_t<decltype(x)>;
-                if constexpr (std::is_same_v<T, material::dielectric>) {
-                    h(x.roughness);
-                    h(x.ior.index());
-                    std::visit(
-                        [&](const auto& n) {
-                            using N = std::decay_t<decltype(n)>;
-                            if constexpr (std::is_same_v<N, constant_ior>) h(n.value);
-                            else if constexpr (std::is_same_v<N, cauchy_ior>) {
-                                h(n.a);
-                                h(n.b_um2);
-                            } else if constexpr (std::is_same_v<N, sellmeier_ior>) {
-                                for (double v : {n.b1, n.b2, n.b3, n.c1, n.c2, n.c3}) h(v);
-                            } else {
-                                static_assert(std::is_same_v<N, tabulated_ior>, "fingerprint: hash every IOR model");
-                                h(n.table);
-                            }
-                        },
-                        x.ior);
-                } else if constexpr (std::is_same_v<T, material::diffuse>) {
-                    // every field: a new one changes the size and stops the build here
-                    static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<std::uint32_t>),
-                                  "fingerprint: hash every field of material::diffuse");
-                    h(x.reflectance);
-                    if (x.texture) h(*x.texture);  // only when present: untextured scenes keep their fingerprint
-                } else if constexpr (std::is_same_v<T, material::conductor>) {
-                    static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<material::conductor_ior>) +
-                                                   sizeof(double),  // roughness, padded
-                                  "fingerprint: hash every field of material::conductor");
-                    static_assert(sizeof(material::conductor_ior) == sizeof(std::string) + 2 * sizeof(tabulated_spectrum),
-                                  "fingerprint: hash every field of material::conductor_ior");
-                    h(x.reflectance);
-                    if (x.ior) {  // only when present: reflectance-only conductors keep their fingerprint
-                        h(std::string_view(x.ior->name));
-                        h(x.ior->eta);
-                        h(x.ior->k);
-                    }
-                    if (x.roughness != 0.0f) h(x.roughness);  // only when rough: smooth conductors keep their fingerprint
-                } else {
-                    static_assert(sizeof(T) == 0, "fingerprint: hash every field of a new material type");
-                }
-            },
-            m);
+        std::visit([&](const auto& x) { hash_material(h, x); }, m);
     }
     h(scene.emitters.size());
     for (const auto& e : scene.emitters) {

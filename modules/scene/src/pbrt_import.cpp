@@ -531,11 +531,7 @@ private:
             if (type == "stratified") m_doc.desc.default_spp = ps.integer("xsamples", 4) * ps.integer("ysamples", 4);
             else m_doc.desc.default_spp = ps.integer("pixelsamples", type == "independent" ? 4 : 16);
             if (m_doc.desc.default_spp < 1) fail(t.at, "the sampler's sample count must be at least 1");
-            for (auto& p : ps.list)
-                if (!p.used) {
-                    p.used = true;
-                    note(p.at, "Sampler parameter \"" + p.name + "\" ignored (iris-render --sampler chooses iris's sampler)", false);
-                }
+            note_unread(ps, "Sampler", " (iris-render --sampler chooses iris's sampler)", false);
             if (type != "zsobol")
                 note(t.at, "Sampler \"" + type + "\": iris uses its own sampler (--sampler); its sample count is the default spp", false);
         } else if (d == "Integrator") {
@@ -548,11 +544,7 @@ private:
                 note(t.at, "\"integer maxdepth\" 0 (emitters seen directly only): iris's shortest path has one scattering event");
                 m_doc.desc.default_max_depth = 1;
             }
-            for (auto& p : ps.list)
-                if (!p.used) {
-                    p.used = true;
-                    note(p.at, "Integrator parameter \"" + p.name + "\" ignored");
-                }
+            note_unread(ps, "Integrator", "", true);
             note(t.at, "Integrator \"" + type + "\": iris renders with its own estimator (iris-render --estimator); maxdepth is the default max depth",
                  false);
         } else if (d == "PixelFilter") {
@@ -929,6 +921,15 @@ private:
         return static_cast<std::uint32_t>(m_doc.desc.emitters.size() - 1);
     }
 
+    /// A note for each parameter of `ps` nothing read: "KIND parameter "NAME" ignored" + why.
+    void note_unread(parameters& ps, const std::string& kind, const std::string& why, bool approximation) {
+        for (auto& p : ps.list)
+            if (!p.used) {
+                p.used = true;
+                note(p.at, kind + " parameter \"" + p.name + "\" ignored" + why, approximation);
+            }
+    }
+
     // -- materials
     float roughness(parameters& ps, bool remap_default, const location& at, const std::string& prefix = "") {
         const double r = ps.number(prefix + "roughness", 0.0);
@@ -950,15 +951,38 @@ private:
                 if (x < 0.0 || x > 1.0) fail(at, std::string("\"") + param + "\" must lie in [0, 1] at every wavelength");
             return s->table;
         };
+        // pbrt-v4's layered materials: the coat's index, roughness and layer (docs/pbrt-import.md)
+        auto coat = [&](material::coated c, const std::string& prefix) {
+            c.roughness = roughness(ps, true, at, prefix);
+            const std::string eta_name = prefix + "eta";
+            if (auto e = spectrum(ps, eta_name.c_str(), spectrum_use::unbounded)) {
+                double v = e->constant ? *e->constant : e->table(550.0);
+                if (!e->constant)
+                    note(at, "material '" + name + "': the coat's spectral \"" + eta_name + "\" approximated by its value at 550 nm, " +
+                                 reader_number(v) + " (iris's coats have a constant index)");
+                if (v == 0.0) v = 1.0;  // as pbrt-v4
+                if (!(v >= 1.0 && v <= 4.0)) fail(at, "material '" + name + "': the coat's \"" + eta_name + "\" must lie in [1, 4], it is " + reader_number(v));
+                c.eta = static_cast<float>(v);
+            }
+            const double thickness = ps.number("thickness", 0.01);
+            if (!(thickness >= 0.0 && thickness <= 1e3)) fail(at, "\"float thickness\" must lie in [0, 1000]");
+            c.thickness = static_cast<float>(thickness);
+            c.max_depth = ps.integer("maxdepth", 10);
+            if (c.max_depth < 1 || c.max_depth > 100) fail(at, "\"integer maxdepth\" must lie in [1, 100] (iris's limit)");
+            c.samples = ps.integer("nsamples", 1);
+            if (c.samples < 1 || c.samples > 256) fail(at, "\"integer nsamples\" must lie in [1, 256]");
+            if (auto a = spectrum(ps, "albedo", spectrum_use::albedo))
+                for (double x : a->table.values())
+                    if (x != 0.0) fail(at, "material '" + name + "': a scattering medium in the coat (\"albedo\" > 0) is not supported");
+            const double g = ps.number("g", 0.0);
+            if (!(g >= -1.0 && g <= 1.0)) fail(at, "\"float g\" must lie in [-1, 1]");
+            return c;
+        };
         material_desc m;
         if (type == "diffuse") {
             m = material::diffuse{reflectance("reflectance", 0.5)};
         } else if (type == "coateddiffuse") {
-            m = material::diffuse{reflectance("reflectance", 0.5)};
-            for (const char* p : {"roughness", "uroughness", "vroughness", "thickness", "eta", "albedo", "g", "maxdepth",
-                                  "nsamples", "remaproughness"})
-                if (parameter* q = ps.find(p)) (void)q;
-            note(at, "material '" + name + "': coateddiffuse approximated by its diffuse base (iris has no coated materials yet)");
+            m = coat(material::coated{material::diffuse{reflectance("reflectance", 0.5)}}, "");
         } else if (type == "dielectric" || type == "thindielectric") {
             if (type == "thindielectric") fail(at, "thindielectric is not supported yet (docs/pbrt-import.md)");
             material::dielectric d;
@@ -1001,17 +1025,14 @@ private:
             c.ior = std::move(ior);
             if (type == "coatedconductor") {
                 c.roughness = roughness(ps, true, at, "conductor.");
-                for (const char* p : {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta",
-                                      "thickness", "albedo", "g", "maxdepth", "nsamples"})
-                    ps.find(p);
-                note(at, "material '" + name + "': coatedconductor approximated by its conductor base (iris has no coated materials yet)");
+                m = coat(material::coated{std::move(c)}, "interface.");
             } else {
                 c.roughness = roughness(ps, true, at);
+                m = c;
             }
-            m = c;
         } else {
-            fail(at, "material type '" + type + "' is not supported (iris: diffuse, dielectric, conductor; coateddiffuse and "
-                     "coatedconductor approximated)");
+            fail(at, "material type '" + type + "' is not supported (iris: diffuse, dielectric, conductor, coateddiffuse, "
+                     "coatedconductor)");
         }
         if (parameter* p = ps.find("displacement")) fail(p->at, "displacement is not supported");
         if (parameter* p = ps.find("normalmap")) fail(p->at, "normal maps are not supported");

@@ -11,6 +11,7 @@
 /// | `material::conductor`, GGX α ≥ `smooth_alpha` | `rough_conductor` | conductor.hpp |
 /// | `material::dielectric`, smooth or index 1 | `smooth_dielectric` | smooth_dielectric.hpp |
 /// | `material::dielectric`, GGX α ≥ `smooth_alpha` | `rough_dielectric` | rough_dielectric.hpp |
+/// | `material::coated` (a coat over a diffuse or conductor base) | `coated_bxdf` | coated.hpp |
 ///
 /// Adding a material: its data in render/scene.hpp (`material_desc` and the feature
 /// summary), its BxDF header here, its branch in `visit_bxdf` (which does not compile
@@ -23,6 +24,7 @@
 #include <variant>
 
 #include "iris/render/materials/bxdf.hpp"
+#include "iris/render/materials/coated.hpp"
 #include "iris/render/materials/conductor.hpp"
 #include "iris/render/materials/fresnel.hpp"
 #include "iris/render/materials/lambertian.hpp"
@@ -62,7 +64,8 @@ decltype(auto) visit_bxdf(const material_desc& m, F&& f) {
             else if constexpr (std::is_same_v<D, material::dielectric>) {
                 if (detail::effectively_smooth(data)) return f(smooth_dielectric{data});
                 return f(rough_dielectric{data});
-            } else static_assert(detail::no_bxdf_for<D>, "visit_bxdf: a material_desc alternative without a BxDF");
+            } else if constexpr (std::is_same_v<D, material::coated>) return f(coated_bxdf{data});
+            else static_assert(detail::no_bxdf_for<D>, "visit_bxdf: a material_desc alternative without a BxDF");
         },
         m);
 }
@@ -84,6 +87,6 @@ sampled_spectra<N> scene_spectra(const B& b, const sampled_wavelengths<N>& wl) n
 }
 
 static_assert(separable_bxdf<lambertian> && bxdf<specular_conductor> && bxdf<rough_conductor> &&
-              bxdf<smooth_dielectric> && bxdf<rough_dielectric>);
+              bxdf<smooth_dielectric> && bxdf<rough_dielectric> && bxdf<coated_bxdf>);
 
 }  // namespace iris

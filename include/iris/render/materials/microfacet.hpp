@@ -63,7 +63,8 @@ struct ggx {
 /// with the generalised half vector of Walter et al. 2007 (pbrt-v4's formulation).
 struct rough_value {
     float f_cos = 0.0f;
-    float pdf = 0.0f;
+    float pdf = 0.0f;        ///< the lobe's density times the probability of choosing it (`selection`)
+    float selection = 0.0f;  ///< that probability: F at the microfacet for reflection, 1 − F for transmission
 };
 inline rough_value rough_dielectric_value(const ggx& m, const glm::vec3& wo, const glm::vec3& wi, float eta) noexcept {
     const float cos_o = wo.z, cos_i = wi.z;
@@ -80,7 +81,7 @@ inline rough_value rough_dielectric_value(const ggx& m, const glm::vec3& wo, con
     if (reflect) {
         const float f = m.d(wm) * m.g(wo, wi) * fr / std::fabs(4.0f * cos_i * cos_o);
         const float pdf = m.d_visible(wo, wm) / (4.0f * std::fabs(glm::dot(wo, wm))) * fr;
-        return {f * std::fabs(cos_i), pdf};
+        return {f * std::fabs(cos_i), pdf, fr};
     }
     const float s = glm::dot(wi, wm) + glm::dot(wo, wm) / etap;
     const float denom = s * s * cos_i * cos_o;
@@ -89,7 +90,7 @@ inline rough_value rough_dielectric_value(const ggx& m, const glm::vec3& wo, con
     ft /= etap * etap;  // radiance is compressed/expanded across the interface
     const float dwm_dwi = std::fabs(glm::dot(wi, wm)) / (s * s);
     const float pdf = m.d_visible(wo, wm) * dwm_dwi * (1.0f - fr);
-    return {ft * std::fabs(cos_i), pdf};
+    return {ft * std::fabs(cos_i), pdf, 1.0f - fr};
 }
 
 }  // namespace iris::detail
