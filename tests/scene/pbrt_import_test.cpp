@@ -324,6 +324,34 @@ TEST(PbrtImport, CoatedMaterialsKeepTheirLayer) {
     }
 }
 
+TEST(PbrtImport, LoopSubdivisionSurfacesAreBuiltWithTheirNormals) {
+    const std::string octahedron = "\"point3 P\" [ 1 0 0  -1 0 0  0 1 0  0 -1 0  0 0 1  0 0 -1 ]\n"
+                                   "  \"integer indices\" [ 0 2 4  2 1 4  1 3 4  3 0 4  2 0 5  1 2 5  3 1 5  0 3 5 ]";
+    const auto s = import(scene("Shape \"loopsubdiv\" \"integer levels\" 2 " + octahedron + "\n"));
+    const auto& mesh = s.shapes.back().mesh;
+    EXPECT_EQ(mesh.triangles.size(), 8u * 16u);
+    EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) EXPECT_GT(glm::dot(mesh.normals[i], mesh.positions[i]), 0.0f);  // outward
+    EXPECT_EQ(import(scene("Shape \"loopsubdiv\" " + octahedron + "\n")).shapes.back().mesh.triangles.size(), 8u * 64u);  // 3 by default
+    for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+             {"Shape \"loopsubdiv\" \"integer levels\" 11 " + octahedron + "\n", "\"integer levels\" must lie in [0, 10]"},
+             {"Shape \"loopsubdiv\" \"string scheme\" \"butterfly\" " + octahedron + "\n", "the only scheme is \"loop\""},
+             {"Shape \"loopsubdiv\" \"integer levels\" 2 " + octahedron + " \"normal N\" [ 0 0 1 ]\n", "parameter \"normal N\" of Shape \"loopsubdiv\" is not supported"}}) {
+        SCOPED_TRACE(text);
+        const std::string e = error_of(scene(text));
+        EXPECT_NE(e.find(message), std::string::npos) << e;
+    }
+    // a control mesh that is not an oriented manifold is refused when the scene is built, at its line
+    try {
+        (void)import(scene("Shape \"loopsubdiv\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0  0 0 1 ] \"integer indices\" [ 0 1 2  0 1 3  0 2 1 ]\n"));
+        ADD_FAILURE() << "no error for a non-manifold control mesh";
+    } catch (const iris::scene::error& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("test.pbrt:9: loopsubdiv"), std::string::npos) << m;
+        EXPECT_NE(m.find("loopsubdiv: the control mesh is not an oriented manifold"), std::string::npos) << m;
+    }
+}
+
 TEST(PbrtImport, IncludesAreReadRelativeToTheMainFileAndCyclesAreRefused) {
     const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-" + std::to_string(::getpid()));
     fs::create_directories(dir / "sub");

@@ -124,6 +124,7 @@ iris::triangle_mesh recipe(const shape_spec& s) {
         case shape_type::triangles: return s.triangles ? *s.triangles : iris::triangle_mesh{};
         case shape_type::sphere: return make_sphere(s.size.x);
         case shape_type::disk: return make_disk(s.size.x, s.size.y, s.size.z);
+        case shape_type::subdivision: return s.triangles ? geometry::loop_subdivide(*s.triangles, s.levels) : iris::triangle_mesh{};
     }
     return {};
 }

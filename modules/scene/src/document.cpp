@@ -33,6 +33,7 @@ std::string_view shape_type_name(shape_type t) noexcept {
         case shape_type::triangles: return "triangles";
         case shape_type::sphere: return "sphere";
         case shape_type::disk: return "disk";
+        case shape_type::subdivision: return "subdivision";
     }
     return "?";
 }
@@ -613,6 +614,7 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
             case shape_type::triangles:
             case shape_type::sphere:
             case shape_type::disk:
+            case shape_type::subdivision:
                 break;  // a pbrt-v4 file's shapes: not in `shape_types`, never read from JSON
         }
         sh.name = r.has("name") ? r.at("name").string()

@@ -1137,7 +1137,7 @@ private:
         s.line = t.at.line;
         s.pointer = "";
         if (ps.find("alpha")) fail(t.at, "alpha (cut-out) shapes are not supported");
-        if (type == "trianglemesh" || type == "bilinearmesh") {
+        if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
             auto mesh = std::make_shared<iris::triangle_mesh>();
             parameter* p = ps.find("P");
             if (!p) fail(t.at, "Shape \"" + type + "\" has no \"point3 P\"");
@@ -1148,7 +1148,7 @@ private:
                     if (std::fabs(pv[i + k]) > max_coordinate) fail(p->at, "a coordinate beyond ±1e7");
                 mesh->positions.emplace_back(pv[i], pv[i + 1], pv[i + 2]);
             }
-            const std::size_t n = mesh->positions.size(), per = type == "trianglemesh" ? 3 : 4;
+            const std::size_t n = mesh->positions.size(), per = type == "bilinearmesh" ? 4 : 3;
             std::vector<double> idx;
             if (parameter* q = ps.find("indices")) idx = ps.expect(*q, {"integer"}, 0).numbers;
             else if (n == per)
@@ -1169,7 +1169,15 @@ private:
                 }
                 note(t.at, "bilinearmesh: each patch split into two triangles (exact when it is planar)");
             }
-            if (parameter* q = ps.find("N")) {
+            if (type == "loopsubdiv") {
+                const int levels = ps.integer("levels", 3);
+                if (levels < 0 || levels > 10) fail(t.at, "\"integer levels\" must lie in [0, 10]");
+                if (static_cast<double>(mesh->triangles.size()) * std::pow(4.0, levels) > static_cast<double>(max_triangles))
+                    fail(t.at, "loopsubdiv: " + std::to_string(levels) + " levels would make more than 2^28 triangles: refused");
+                if (ps.string("scheme", "loop") != "loop") fail(t.at, "loopsubdiv: the only scheme is \"loop\"");
+                s.levels = levels;  // subdivided when the scene is built (iris::geometry::loop_subdivide)
+            }
+            if (parameter* q = type == "loopsubdiv" ? nullptr : ps.find("N")) {
                 const auto& nv = ps.expect(*q, {"normal", "normal3"}, 3 * n).numbers;
                 for (std::size_t i = 0; i < nv.size(); i += 3) mesh->normals.emplace_back(nv[i], nv[i + 1], nv[i + 2]);
                 // pbrt-v4 turns a triangle's geometric normal toward its shading normals, iris keeps
@@ -1185,13 +1193,13 @@ private:
                     note(q->at, std::to_string(against) + " of " + std::to_string(mesh->triangles.size()) +
                                     " triangles wind against their \"normal N\": pbrt-v4 orients them by N, iris by the winding");
             }
-            if (parameter* q = ps.find("uv")) {
+            if (parameter* q = type == "loopsubdiv" ? nullptr : ps.find("uv")) {
                 const auto& uv = ps.expect(*q, {"point2", "float"}, 2 * n).numbers;
                 for (std::size_t i = 0; i < uv.size(); i += 2) mesh->uvs.emplace_back(uv[i], uv[i + 1]);
             }
-            if (parameter* q = ps.find("S")) note(q->at, "\"vector3 S\" (tangents) ignored");
-            if (parameter* q = ps.find("faceIndices")) note(q->at, "\"integer faceIndices\" ignored", false);
-            s.type = shape_type::triangles;
+            if (parameter* q = type == "loopsubdiv" ? nullptr : ps.find("S")) note(q->at, "\"vector3 S\" (tangents) ignored");
+            if (parameter* q = type == "loopsubdiv" ? nullptr : ps.find("faceIndices")) note(q->at, "\"integer faceIndices\" ignored", false);
+            s.type = type == "loopsubdiv" ? shape_type::subdivision : shape_type::triangles;
             s.triangles = std::move(mesh);
         } else if (type == "plymesh") {
             const std::string f = ps.string("filename", "");
@@ -1217,7 +1225,7 @@ private:
             s.size = glm::vec3(static_cast<float>(r), static_cast<float>(inner), static_cast<float>(h));
             note(t.at, "disk tessellated into 192 segments", false);
         } else {
-            fail(t.at, "Shape \"" + type + "\" is not supported (iris: trianglemesh, plymesh, sphere, disk, bilinearmesh)");
+            fail(t.at, "Shape \"" + type + "\" is not supported (iris: trianglemesh, plymesh, loopsubdiv, sphere, disk, bilinearmesh)");
         }
         ps.finish();
         s.material = current_material();
@@ -1243,6 +1251,8 @@ private:
     static std::size_t triangle_count(const shape_spec& s) {
         switch (s.type) {
             case shape_type::triangles: return s.triangles ? s.triangles->triangles.size() : 0;
+            case shape_type::subdivision:
+                return s.triangles ? s.triangles->triangles.size() << (2 * s.levels) : 0;
             case shape_type::sphere: return 36480;
             case shape_type::disk: return s.size.y > 0.0f ? 384 : 192;
             default: return 0;

@@ -47,4 +47,14 @@ triangle_mesh make_hollow_cube(glm::vec3 centre, float outer_edge, float inner_e
 /// \throws error if the mesh is not closed and manifold.
 double enclosed_volume(const triangle_mesh& mesh);
 
+/// \brief pbrt-v4's `loopsubdiv` shape: `levels` steps of Loop subdivision of a triangle
+/// mesh (CGAL's triangle quadrisection with pbrt-v4's masks: Warren's weight 3/(8n) of an
+/// interior vertex's ring, 3/16 at valence 3; the border rules of Loop), every vertex then
+/// moved to its limit position and given the limit surface's normal (per-vertex `normals`,
+/// turned to agree with the triangles' winding). A border vertex's limit position is the
+/// cubic B-spline's (1/6, 4/6, 1/6; pbrt-v4 uses 1/5, 3/5, 1/5, which is not the limit of
+/// its border rule). Unused points are dropped.
+/// \throws error unless 0 ≤ levels ≤ 10 and the mesh is an oriented manifold with borders.
+triangle_mesh loop_subdivide(const triangle_mesh& control, int levels);
+
 }  // namespace iris::geometry

@@ -39,6 +39,8 @@ enum class shape_type {
     sphere,       ///< a sphere of radius `size.x` about the origin, tessellated (pbrt-v4's `sphere`)
     disk,         ///< a disk of radius `size.x`, inner radius `size.y`, in the plane z = `size.z`,
                   ///< facing +z, tessellated (pbrt-v4's `disk`)
+    subdivision,  ///< the control mesh `triangles` after `levels` steps of Loop subdivision, at its
+                  ///< limit surface (pbrt-v4's `loopsubdiv`; iris::geometry::loop_subdivide)
 };
 
 /// \brief The JSON name of a shape type (`"hollow_cube"`, …).
@@ -54,7 +56,8 @@ struct shape_spec {
     glm::vec3 size{1.0f};
     float wall = 0.0f;
     std::filesystem::path file;   ///< `mesh` only: absolute, or relative to the working directory
-    std::shared_ptr<const iris::triangle_mesh> triangles;  ///< `triangles` only (shared by instances)
+    std::shared_ptr<const iris::triangle_mesh> triangles;  ///< `triangles`, `subdivision` (shared by instances)
+    int levels = 0;               ///< `subdivision` only
     glm::mat4 transform{1.0f};    ///< object → world, applied after the recipe
     bool flip = false;            ///< reverse every triangle (normals point the other way)
     std::uint32_t material = 0;
