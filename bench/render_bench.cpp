@@ -47,7 +47,33 @@ void render(benchmark::State& state, const std::string& scene_name, const std::s
     state.counters["rays/s"] = benchmark::Counter(rays, benchmark::Counter::kIsRate);
 }
 
+/// \brief One short render (1 spp, 64 × 48) per iteration, on the scene description (the
+/// ray tracer and light sampler built by every call) or on a prepared scene (built once):
+/// the per-call cost a progressive or sweeping caller (the Python module) no longer pays.
+void render_call(benchmark::State& state, const std::string& scene_name, bool prepared) {
+    const auto& s = scene(scene_name);
+    const iris::renderer::prepared_scene ready = iris::renderer::prepared_scene::borrow(s);
+    iris::renderer::options o;
+    o.width = 64;
+    o.height = 48;
+    o.spp = 1;
+    o.threads = 1;
+    for (auto _ : state) {
+        iris::film f(1, 1);
+        const auto st = prepared ? iris::renderer::render(ready, o, f) : iris::renderer::render(s, o, f);
+        benchmark::DoNotOptimize(st.rays);
+    }
+}
+
 void register_all() {
+    for (const char* sc : {"cornell", "falling-cubes", "prism"})
+        for (bool prepared : {false, true})
+            benchmark::RegisterBenchmark(
+                (std::string("RenderCall/") + sc + (prepared ? "/prepared" : "/scene_desc")).c_str(),
+                [=](benchmark::State& st) { render_call(st, sc, prepared); })
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime()
+                ->MinTime(1.0);
     for (const char* sc : {"cornell", "falling-cubes"})
         for (const char* p : {"hwss", "paper", "paper-fast", "restrict-only", "scaled-pdf", "hwss-c1", "hwss-c8"})
             for (int t : {1, 2})

@@ -7,9 +7,10 @@ packages=(
   g++ cmake ninja-build pkg-config git
   libglm-dev libopenexr-dev libembree-dev libcgal-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtinyobjloader-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev libtinyobjloader-dev zlib1g-dev
   gnuplot-nox
   libopenmpi-dev openmpi-bin
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 # Extra packages for optional work, e.g. `scripts/deps.sh clang-16 libclang-rt-16-dev` (fuzzing).
 packages+=("$@")

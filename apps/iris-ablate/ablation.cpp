@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 
 #include <iris/exr/exr.hpp>
 #include <iris/hash.hpp>
+#include <iris/metrics/flip.hpp>
 #include <iris/metrics/metrics.hpp>
 #include <iris/renderer/renderer.hpp>
 #include <iris/scene/scene.hpp>
@@ -203,6 +205,14 @@ ablation_result run_ablation(const ablation_options& opt) {
         result.reference_source =
             fmt::format("`hwss`, {} spp, sampler `{}`, estimator `{}`", opt.reference_spp, opt.ref_sampler(), opt.ref_estimator());
     }
+    // HDR-ꟻLIP takes its exposures from the reference; one whose median pixel is black has none
+    bool flip_exposures_ok = true;
+    try {
+        (void)flip_exposure_range(result.reference);
+    } catch (const std::invalid_argument& e) {
+        flip_exposures_ok = false;
+        fmt::print(stderr, "iris-ablate: note: no FLIP column: {}\n", e.what());
+    }
 
     for (const auto& preset : opt.presets) {
         for (int seed = 1; seed <= opt.seeds; ++seed) {
@@ -224,8 +234,10 @@ ablation_result run_ablation(const ablation_options& opt) {
                 auto row = [&](double budget) {
                     const image img = film_now.to_image();
                     const auto m = compare(img, result.reference);
+                    double flip = std::numeric_limits<double>::quiet_NaN();
+                    if (flip_exposures_ok) flip = flip_hdr(img, result.reference);
                     return std::pair{ablation_row{scene.name, preset, opt.sampler, seed, st.spp_done, st.seconds, m.mse, m.relmse,
-                                                  m.ssim, budget},
+                                                  m.ssim, budget, flip},
                                      img};
                 };
                 if (next_spp < opt.spp.size() && st.spp_done == opt.spp[next_spp]) {

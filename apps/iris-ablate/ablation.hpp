@@ -41,6 +41,7 @@ struct ablation_row {
     int spp = 0;
     double seconds = 0, mse = 0, relmse = 0, ssim = 0;
     double budget = 0;
+    double flip = 0;  ///< mean HDR-ꟻLIP against the reference (NaN where the reference has no exposure range)
 };
 
 struct ablation_result {

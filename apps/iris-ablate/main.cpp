@@ -12,7 +12,7 @@
 // — this executable's bytes) an unbiased `hwss` reference, or takes one rendered elsewhere (--reference: of
 // the run's size and, per its iris:scene attribute, of its scene; summary.md records its file and header), renders each preset progressively once per seed
 // with snapshots at the requested spp (and wall-clock budgets), and writes DIR/results.csv
-// (scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim), DIR/results_time.csv, the snapshot
+// (scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim,flip), DIR/results_time.csv, the snapshot
 // EXRs, SSIM/MSE plots against spp and seconds, crops at the smallest spp side by side,
 // and DIR/summary.md. Bad arguments: one line on stderr, exit 2.
 #include <algorithm>

@@ -48,11 +48,10 @@ grouped group(const std::vector<ablation_row>& rows, bool by_budget) {
 void write_csv(const fs::path& path, const std::vector<ablation_row>& rows, bool with_budget) {
     exr::write_atomically(path, [&](const fs::path& tmp) {
         std::ofstream o(tmp);
-        o << "scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim" << (with_budget ? ",budget" : "") << "\n";
+        o << "scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim,flip" << (with_budget ? ",budget" : "") << "\n";
         for (const auto& r : rows) {
-            o << fmt::format("{},{},{},{},{},{:.6f},{:.9g},{:.9g},{:.9g}", r.scene, r.preset, r.sampler, r.seed, r.spp,
-                             r.seconds,
-                             r.mse, r.relmse, r.ssim);
+            o << fmt::format("{},{},{},{},{},{:.6f},{:.9g},{:.9g},{:.9g},{:.9g}", r.scene, r.preset, r.sampler, r.seed, r.spp,
+                             r.seconds, r.mse, r.relmse, r.ssim, r.flip);
             if (with_budget) o << fmt::format(",{:g}", r.budget);
             o << "\n";
         }
@@ -60,14 +59,21 @@ void write_csv(const fs::path& path, const std::vector<ablation_row>& rows, bool
     });
 }
 
-void metric_plot(const grouped& g, const std::vector<std::string>& order, bool seconds_axis, bool ssim,
+/// \brief The metrics plotted against spp and time.
+enum class metric { ssim, mse, flip };
+
+void metric_plot(const grouped& g, const std::vector<std::string>& order, bool seconds_axis, metric which,
                  const std::string& scene, const fs::path& out) {
+    static constexpr const char* names[] = {"SSIM", "MSE", "FLIP"};
+    static constexpr const char* labels[] = {"SSIM (higher is better)", "MSE (lower is better)",
+                                             "mean HDR-FLIP (lower is better)"};
+    const auto k = static_cast<std::size_t>(which);
     plot p;
-    p.title = fmt::format("{}: {} vs {}", scene, ssim ? "SSIM" : "MSE", seconds_axis ? "time" : "samples per pixel");
+    p.title = fmt::format("{}: {} vs {}", scene, names[k], seconds_axis ? "time" : "samples per pixel");
     p.xlabel = seconds_axis ? "seconds" : "samples per pixel";
-    p.ylabel = ssim ? "SSIM (higher is better)" : "MSE (lower is better)";
+    p.ylabel = labels[k];
     p.log_x = true;
-    p.log_y = !ssim;
+    p.log_y = which != metric::ssim;
     p.points = true;
     for (const auto& preset : order) {
         const auto it = g.find(preset);
@@ -77,7 +83,7 @@ void metric_plot(const grouped& g, const std::vector<std::string>& order, bool s
             std::vector<double> xs, ys;
             for (const auto* r : rows) {
                 xs.push_back(seconds_axis ? r->seconds : x);
-                ys.push_back(ssim ? r->ssim : r->mse);
+                ys.push_back(which == metric::ssim ? r->ssim : which == metric::mse ? r->mse : r->flip);
             }
             s.x.push_back(summarise(xs).mean);
             s.y.push_back(summarise(ys).mean);
@@ -127,12 +133,15 @@ void write_report(const ablation_options& opt, const ablation_result& r) {
     if (!r.time_rows.empty()) write_csv(opt.out / "results_time.csv", r.time_rows, true);
 
     const auto by_spp = group(r.spp_rows, false);
-    metric_plot(by_spp, opt.presets, false, true, scene, opt.out / "ssim_vs_spp.png");
-    metric_plot(by_spp, opt.presets, false, false, scene, opt.out / "mse_vs_spp.png");
+    const bool has_flip = !r.spp_rows.empty() && !std::isnan(r.spp_rows.front().flip);
+    metric_plot(by_spp, opt.presets, false, metric::ssim, scene, opt.out / "ssim_vs_spp.png");
+    metric_plot(by_spp, opt.presets, false, metric::mse, scene, opt.out / "mse_vs_spp.png");
+    if (has_flip) metric_plot(by_spp, opt.presets, false, metric::flip, scene, opt.out / "flip_vs_spp.png");
     // vs seconds: the time-equal snapshots when there are any, else the spp snapshots' times
     const auto by_time = r.time_rows.empty() ? by_spp : group(r.time_rows, true);
-    metric_plot(by_time, opt.presets, true, true, scene, opt.out / "ssim_vs_seconds.png");
-    metric_plot(by_time, opt.presets, true, false, scene, opt.out / "mse_vs_seconds.png");
+    metric_plot(by_time, opt.presets, true, metric::ssim, scene, opt.out / "ssim_vs_seconds.png");
+    metric_plot(by_time, opt.presets, true, metric::mse, scene, opt.out / "mse_vs_seconds.png");
+    if (has_flip) metric_plot(by_time, opt.presets, true, metric::flip, scene, opt.out / "flip_vs_seconds.png");
     write_crops(opt, r, opt.out / fmt::format("crops_{}spp.png", opt.spp.front()));
 
     // summary.md
@@ -141,7 +150,8 @@ void write_report(const ablation_options& opt, const ablation_result& r) {
                       "N_thold = {}. Mean ± standard deviation over seeds; gain = SSIM relative to `hwss` at the same "
                       "spp.\n\n",
                       r.reference_source, opt.sampler, opt.estimator, opt.seeds, r.reference.width(), r.reference.height(), opt.nthold);
-    md += "| spp | preset | SSIM | SSIM gain vs hwss | MSE | MSE vs hwss | relMSE | seconds |\n|---|---|---|---|---|---|---|---|\n";
+    md += "| spp | preset | SSIM | SSIM gain vs hwss | MSE | MSE vs hwss | relMSE | FLIP | seconds |\n"
+          "|---|---|---|---|---|---|---|---|---|\n";
     for (int spp : opt.spp) {
         const auto base_it = by_spp.find("hwss");
         stat base_ssim, base_mse;
@@ -157,42 +167,48 @@ void write_report(const ablation_options& opt, const ablation_result& r) {
         for (const auto& preset : opt.presets) {
             const auto it = by_spp.find(preset);
             if (it == by_spp.end() || !it->second.count(spp)) continue;
-            std::vector<double> s, m, rm, sec, gain;
+            std::vector<double> s, m, rm, fl, sec, gain;
             const auto& rows = it->second.at(spp);
             for (std::size_t i = 0; i < rows.size(); ++i) {
                 s.push_back(rows[i]->ssim);
                 m.push_back(rows[i]->mse);
                 rm.push_back(rows[i]->relmse);
+                fl.push_back(rows[i]->flip);
                 sec.push_back(rows[i]->seconds);
                 if (base_it != by_spp.end() && base_it->second.count(spp) && i < base_it->second.at(spp).size())
                     gain.push_back(100.0 * (rows[i]->ssim / base_it->second.at(spp)[i]->ssim - 1.0));  // paired by seed
             }
             const auto ss = summarise(s), ms = summarise(m), rs = summarise(rm), ts = summarise(sec), gs = summarise(gain);
-            md += fmt::format("| {} | {} | {:.4f} ± {:.4f} | {} | {:.4g} ± {:.2g} | {} | {:.4g} | {:.2f} |\n", spp, preset,
+            const auto fs_ = summarise(fl);
+            md += fmt::format("| {} | {} | {:.4f} ± {:.4f} | {} | {:.4g} ± {:.2g} | {} | {:.4g} | {} | {:.2f} |\n", spp, preset,
                               ss.mean, ss.std, gain.empty() ? "—" : fmt::format("{:+.1f} % ± {:.1f}", gs.mean, gs.std),
                               ms.mean, ms.std,
                               base_mse.n ? fmt::format("{:+.1f} %", 100.0 * (ms.mean / base_mse.mean - 1.0)) : "—",
-                              rs.mean, ts.mean);
+                              rs.mean, has_flip ? fmt::format("{:.4f} ± {:.4f}", fs_.mean, fs_.std) : "—", ts.mean);
         }
     }
     if (!r.time_rows.empty()) {
-        md += "\n## Time-equal\n\n| budget (s) | preset | spp reached | SSIM | MSE |\n|---|---|---|---|---|\n";
+        md += "\n## Time-equal\n\n| budget (s) | preset | spp reached | SSIM | MSE | FLIP |\n|---|---|---|---|---|---|\n";
         const auto by_budget = group(r.time_rows, true);
         for (double b : opt.budgets)
             for (const auto& preset : opt.presets) {
                 const auto it = by_budget.find(preset);
                 if (it == by_budget.end() || !it->second.count(b)) continue;
-                std::vector<double> s, m, n;
+                std::vector<double> s, m, n, f;
                 for (const auto* row : it->second.at(b)) {
                     s.push_back(row->ssim);
                     m.push_back(row->mse);
                     n.push_back(row->spp);
+                    f.push_back(row->flip);
                 }
-                md += fmt::format("| {:g} | {} | {:.0f} | {:.4f} ± {:.4f} | {:.4g} |\n", b, preset, summarise(n).mean,
-                                  summarise(s).mean, summarise(s).std, summarise(m).mean);
+                md += fmt::format("| {:g} | {} | {:.0f} | {:.4f} ± {:.4f} | {:.4g} | {} |\n", b, preset, summarise(n).mean,
+                                  summarise(s).mean, summarise(s).std, summarise(m).mean,
+                                  has_flip ? fmt::format("{:.4f}", summarise(f).mean) : "—");
             }
     }
-    md += fmt::format("\nPlots: `ssim_vs_spp.png`, `mse_vs_spp.png`, `ssim_vs_seconds.png`, `mse_vs_seconds.png`; "
+    md += fmt::format("\nFLIP: mean HDR-FLIP against the reference (docs/metrics.md; lower is better).\n"
+                      "Plots: `ssim_vs_spp.png`, `mse_vs_spp.png`, `flip_vs_spp.png`, `ssim_vs_seconds.png`, "
+                      "`mse_vs_seconds.png`, `flip_vs_seconds.png`; "
                       "crops at {} spp (reference first, then {}): `crops_{}spp.png`.\n",
                       opt.spp.front(), fmt::format("{}", fmt::join(opt.presets, ", ")), opt.spp.front());
     exr::write_atomically(opt.out / "summary.md", [&](const fs::path& tmp) {

@@ -14,6 +14,7 @@
 #include <fmt/core.h>
 
 #include <iris/exr/exr.hpp>
+#include <iris/metrics/flip.hpp>
 #include <iris/metrics/metrics.hpp>
 
 #include "cli.hpp"
@@ -287,6 +288,51 @@ void error_map(const std::string& image_path, const std::string& reference_path,
     write_output(out, [&] { exr::write_png(out, map, 0.0); });
 }
 
+// ---- flip -----------------------------------------------------------------------------
+
+void flip_command(const std::string& image_path, const std::string& reference_path, bool ldr, const std::string& ppd_text,
+                  const std::string& out, bool json) {
+    if (!out.empty()) require_extension(out, ".png", "--output");
+    double ppd = flip_default_ppd;
+    if (!ppd_text.empty()) {
+        ppd = parse_number(ppd_text, "--ppd");
+        if (!(ppd > 0.0 && ppd <= 1e4)) throw usage_error(fmt::format("--ppd must be in (0, 10000], got '{}'", ppd_text));
+    }
+    const image_pair p = load_pair(image_path, reference_path);
+    std::vector<float> map;
+    flip_exposures e;
+    if (ldr) {
+        map = flip_map(p.test.pixels, p.reference.pixels, ppd);
+    } else {
+        try {
+            e = flip_exposure_range(p.reference.pixels);
+        } catch (const std::invalid_argument& err) {
+            throw usage_error(fmt::format("'{}': {} (--ldr)", reference_path, err.what()));
+        }
+        map = flip_hdr_map(p.test.pixels, p.reference.pixels, ppd);
+    }
+    const double mean = flip_mean(map);
+    if (json) {
+        if (ldr)
+            fmt::print("{{\"flip\": {}, \"mode\": \"ldr\", \"ppd\": {}}}\n", mean, ppd);
+        else
+            fmt::print("{{\"flip\": {}, \"mode\": \"hdr\", \"ppd\": {}, \"start_exposure\": {}, \"stop_exposure\": {}, "
+                       "\"exposures\": {}}}\n",
+                       mean, ppd, e.start, e.stop, e.count);
+    } else if (ldr) {
+        fmt::print("flip={:.6f} mode=ldr ppd={:.4g}\n", mean, ppd);
+    } else {
+        fmt::print("flip={:.6f} mode=hdr ppd={:.4g} exposures={:.4g}..{:.4g} ({})\n", mean, ppd, e.start, e.stop, e.count);
+    }
+    if (out.empty()) return;
+    image img(p.test.pixels.width(), p.test.pixels.height());
+    for (std::size_t i = 0; i < map.size(); ++i) {
+        const rgb c = error_ramp(map[i]);  // ꟻLIP's errors lie in [0, 1]: the ramp's whole range
+        img.pixels()[i] = {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
+    }
+    write_output(out, [&] { exr::write_png(out, img, 0.0); });
+}
+
 // ---- info -----------------------------------------------------------------------------
 
 void info(const std::string& in) {
@@ -356,6 +402,19 @@ void add_image_commands(CLI::App& app) {
     map_cmd->add_option("--scale", o->scale,
                         "error at the top of the colour ramp (default: the 99th percentile of the error)");
     map_cmd->callback([o] { error_map(o->image, o->reference, o->out, o->scale); });
+
+    auto flip_opts = std::make_shared<std::pair<bool, std::string>>(false, "");
+    auto* flip_cmd = app.add_subcommand("flip", "Print the mean FLIP perceptual error of IMAGE against REFERENCE "
+                                                "(Andersson et al. 2020, 2021; docs/metrics.md): HDR-FLIP, or LDR-FLIP "
+                                                "with --ldr");
+    flip_cmd->add_option("IMAGE", o->image, "EXR to measure")->required();
+    flip_cmd->add_option("REFERENCE", o->reference, "reference EXR (HDR-FLIP takes its exposures from it)")->required();
+    flip_cmd->add_flag("--ldr", flip_opts->first, "LDR-FLIP of the images clamped to [0, 1] (default: HDR-FLIP)");
+    flip_cmd->add_option("--ppd", flip_opts->second,
+                         "pixels per degree of the viewing condition (default 67.02: 3840 pixels across 0.7 m seen from 0.7 m)");
+    flip_cmd->add_option("-o,--output", o->out, "also write the per-pixel error as a false-colour PNG (0 to 1)");
+    flip_cmd->add_flag("--json", o->json, "print one JSON object (keys flip mode ppd [start_exposure stop_exposure exposures])");
+    flip_cmd->callback([o, flip_opts] { flip_command(o->image, o->reference, flip_opts->first, flip_opts->second, o->out, o->json); });
 
     auto* info_cmd = app.add_subcommand("info", "Print the size and string metadata of an EXR");
     info_cmd->add_option("IMAGE", o->image, "input EXR")->required();

@@ -130,27 +130,17 @@ std::string eta(double seconds) {
                      : s >= 60 ? fmt::format("{}m{:02}s", s / 60, s % 60) : fmt::format("{}s", s);
 }
 
-iris::exr::metadata metadata(const iris::scene_desc& s, const args& a, const iris::renderer::status& st) {
-    iris::exr::metadata m{{"iris:scene", s.name},
-            {"iris:preset", a.preset},
-            {"iris:config", st.config_name},
-            {"iris:estimator", st.estimator},
-            {"iris:sampler", st.sampler},
-            {"iris:spp", std::to_string(st.spp_done)},
-            {"iris:seed", std::to_string(a.seed)},
-            {"iris:nthold", std::to_string(a.nthold)},
-            {"iris:nan_inf", std::to_string(st.nan_inf)},
-            {"iris:version", std::string(iris::version)}};
-    if (!st.windows.empty()) m["iris:windows"] = st.windows;  // centre:width (nm) of each restriction window
-    return m;
+iris::exr::metadata metadata(const iris::scene_desc& s, const iris::renderer::options& opt, const iris::renderer::status& st) {
+    return iris::renderer::image_metadata(s.name, opt, st);
 }
 
 /// \brief The image (a pure function of the render's key and spp: no time or machine in
 /// its header, so a resumed or distributed render writes the same bytes; timing is in
 /// --stats) and the PNG.
-void write_outputs(const iris::scene_desc& s, const args& a, const iris::film& f, const iris::renderer::status& st) {
+void write_outputs(const iris::scene_desc& s, const args& a, const iris::renderer::options& opt, const iris::film& f,
+                   const iris::renderer::status& st) {
     const iris::image img = f.to_image();
-    iris::exr::write(a.out, img, metadata(s, a, st), a.half ? iris::exr::pixel_type::half : iris::exr::pixel_type::float32);
+    iris::exr::write(a.out, img, metadata(s, opt, st), a.half ? iris::exr::pixel_type::half : iris::exr::pixel_type::float32);
     if (!a.png.empty()) iris::exr::write_png(a.png, img);
 }
 
@@ -396,7 +386,7 @@ int run_render(args a, const ranks_session& mpi) {
         if (!root) return;
         const auto write_start = std::chrono::steady_clock::now();
         st.nan_inf = dropped = sum.dropped();
-        if (image) write_outputs(scene, a, sum, st);
+        if (image) write_outputs(scene, a, opt, sum, st);
 #if IRIS_HAVE_TEV
         if (image && tev) post(sum);
 #endif

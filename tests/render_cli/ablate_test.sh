@@ -41,7 +41,7 @@ grep -q "^reference: 256 spp in .*, cached as " "$work/stderr.txt" || fail "the 
 csv=$out/results.csv
 [ -f "$csv" ] || fail "results.csv not written"
 header=$(head -n 1 "$csv")
-[ "$header" = "scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim" ] || fail "results.csv header is '$header'"
+[ "$header" = "scene,preset,sampler,seed,spp,seconds,mse,relmse,ssim,flip" ] || fail "results.csv header is '$header'"
 rows=$(($(wc -l <"$csv") - 1))
 [ "$rows" -eq 12 ] || fail "results.csv has $rows rows, expected 2 presets x 2 seeds x 3 spp = 12"
 
@@ -49,14 +49,15 @@ awk -F, '
   function bad(msg) { print "results.csv: " msg > "/dev/stderr"; failed = 1 }
   NR == 1 { next }
   {
-    if (NF != 9) bad("line " NR " has " NF " fields")
+    if (NF != 10) bad("line " NR " has " NF " fields")
     if ($1 != "furnace") bad("line " NR ": scene " $1)
     if ($3 != "sobol") bad("line " NR ": sampler " $3 " (the default is sobol)")
     if (seen[$2 "," $4 "," $5]++) bad("duplicate row " $2 " seed " $4 " spp " $5)
-    for (f = 6; f <= 9; ++f)
+    for (f = 6; f <= 10; ++f)
       if ($f !~ /^[0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?$/) bad("line " NR ": field " f " is not a finite number: " $f)
     if (!($7 > 0)) bad("line " NR ": mse " $7 " is not > 0")
     if (!($9 <= 1)) bad("line " NR ": ssim " $9 " > 1")
+    if (!($10 > 0 && $10 <= 1)) bad("line " NR ": flip " $10 " is not in (0, 1]")
     sum[$2 "," $5] += $7
     n[$2 "," $5]++
   }
@@ -86,7 +87,7 @@ head -n 1 "$out/summary.md" | grep -qx "# Ablation: furnace" || fail "summary.md
 table_rows=$(grep -cE '^\| (2|8|32) \| (hwss|paper) \| ' "$out/summary.md")
 [ "$table_rows" -eq 6 ] || fail "summary.md has $table_rows table rows, expected 3 spp x 2 presets = 6"
 
-for png in ssim_vs_spp.png mse_vs_spp.png ssim_vs_seconds.png mse_vs_seconds.png crops_2spp.png; do
+for png in ssim_vs_spp.png mse_vs_spp.png flip_vs_spp.png ssim_vs_seconds.png mse_vs_seconds.png flip_vs_seconds.png crops_2spp.png; do
   [ -f "$out/$png" ] || fail "$png not written"
   is_png "$out/$png" || fail "$png does not start with the PNG signature"
 done

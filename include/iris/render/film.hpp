@@ -396,15 +396,22 @@ public:
     /// \brief The image as linear sRGB: the running mean, or with the fade layer the fade's blend.
     image to_image() const {
         image img(m_width, m_height);
-        const auto put = [&](std::size_t i, const xyz& v) {
+        for_each_shown([&](std::size_t i, const xyz& v) {
             const rgb c = xyz_to_linear_srgb(v);
             img.pixels()[i] = {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
-        };
-        if (m_fade)
-            for_each_faded(fade_radius, put);
-        else
-            for (std::size_t i = 0; i < m_sum.size(); ++i) put(i, mean(i));
+        });
         return img;
+    }
+
+    /// \brief f(i, v) for every pixel i with the XYZ value `to_image` shows: the running
+    /// mean, or with the fade layer the fade's blend (for callers that write the image
+    /// straight into a buffer of their own, e.g. the Python module's numpy arrays).
+    template <class F>
+    void for_each_shown(F&& f) const {
+        if (m_fade)
+            for_each_faded(fade_radius, f);
+        else
+            for (std::size_t i = 0; i < m_sum.size(); ++i) f(i, mean(i));
     }
 
 private:

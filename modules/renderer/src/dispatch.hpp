@@ -7,8 +7,11 @@
 // parallel; the table that picks one is `find_render` in renderer.cpp, the only place
 // where a runtime choice becomes a compile-time one.
 #include <cstddef>
+#include <cstdint>
 
 #include "iris/render/film.hpp"
+#include "iris/render/lights.hpp"
+#include "iris/render/random.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/embree/intersector.hpp"
 #include "iris/renderer/renderer.hpp"
@@ -30,6 +33,7 @@ inline constexpr bool has_isa_copy = iris::detail::bins_of<P>() >= 80;
 struct render_job {
     const scene_desc& scene;
     const embree::intersector& tracer;
+    const light_sampler& lights;  ///< built once per prepared scene
     const options& opt;
     film& out;
     status& st;
@@ -37,6 +41,12 @@ struct render_job {
 };
 
 using render_fn = void (*)(const render_job&);
+
+/// \brief The sampler of a render: its sequence laid out for `planned_spp` (else `spp`).
+inline sampler_setup make_sampler(const options& opt) {
+    const int planned = opt.planned_spp > 0 ? opt.planned_spp : opt.spp;
+    return sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(planned));  // validated
+}
 
 /// \brief The preset's `path_integrator<Preset>` with the hot loop for I.
 template <class Preset, isa I>

@@ -57,7 +57,7 @@ void render_preset(const render_job& job) {
         return;
     } else {
     preset_passes<Preset> passes(job);
-    const light_sampler lights(job.scene);
+    const light_sampler& lights = job.lights;
     const path_integrator<Preset> integ(job.scene, lights, job.opt.path);
     const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
     run_passes<I>(integ, job.tracer, cam, job.opt, passes, job.out, job.st, job.h);
@@ -67,7 +67,7 @@ void render_preset(const render_job& job) {
 template <class Preset>
 void render_light(const render_job& job) {
     preset_passes<Preset> passes(job);
-    const light_sampler lights(job.scene);
+    const light_sampler& lights = job.lights;
     const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
     const light_integrator<Preset> integ(job.scene, lights, cam, job.opt.path);
     run_light_passes(integ, job.tracer, job.opt, passes, job.out, job.st, job.h);
@@ -76,7 +76,7 @@ void render_light(const render_job& job) {
 template <class Preset>
 void render_bdpt(const render_job& job) {
     preset_passes<Preset> passes(job);
-    const light_sampler lights(job.scene);
+    const light_sampler& lights = job.lights;
     const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
     const bdpt_integrator<Preset> integ(job.scene, lights, cam, job.opt.path, job.opt.bdpt);
     run_bdpt_passes(integ, job.tracer, cam, job.opt, passes, job.out, job.st, job.h);

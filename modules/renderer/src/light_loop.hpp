@@ -31,8 +31,7 @@ template <class Integrator, class Tracer, class DistributionFor>
 void run_light_passes(const Integrator& integ, const Tracer& tracer, const options& opt,
                       DistributionFor&& distribution_for, film& f, status& st, const hooks& h) {
     const int w = f.width(), rows = f.height();
-    const sampler_setup sampler =
-        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
+    const sampler_setup sampler = make_sampler(opt);
     const double paths = static_cast<double>(w) * static_cast<double>(rows);  // one light subpath per pixel per pass
     std::vector<std::uint64_t> row_rays(static_cast<std::size_t>(rows));
     tbb::enumerable_thread_specific<std::vector<splat>> splats;
@@ -91,8 +90,7 @@ template <class Integrator, class Tracer, class DistributionFor>
 void run_bdpt_passes(const Integrator& integ, const Tracer& tracer, const camera_rays& cam, const options& opt,
                      DistributionFor&& distribution_for, film& f, status& st, const hooks& h) {
     const int w = f.width(), rows = f.height();
-    const sampler_setup sampler =
-        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
+    const sampler_setup sampler = make_sampler(opt);
     const sampler_setup light_sampler = light_stream_setup(sampler);
     std::vector<std::uint64_t> row_rays(static_cast<std::size_t>(rows));
     tbb::enumerable_thread_specific<std::vector<splat>> splats;

@@ -142,8 +142,7 @@ void run_passes(const Integrator& integ, const Tracer& tracer, const camera_rays
     const int ts = std::max(1, opt.tile_size);
     const int tiles_x = (w + ts - 1) / ts, tiles_y = (ht + ts - 1) / ts;
     const int tiles = tiles_x * tiles_y;
-    const sampler_setup sampler =
-        sampler_setup::make(*parse_sampler(opt.sampler), opt.seed, static_cast<std::uint64_t>(opt.spp));  // validated
+    const sampler_setup sampler = make_sampler(opt);
     std::vector<std::uint64_t> tile_rays(static_cast<std::size_t>(tiles));
     using distribution = std::remove_cvref_t<decltype(distribution_for(0).second)>;
     constexpr auto tile = tile_function<I, Integrator, Tracer, distribution>();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,7 @@
 #include <fmt/ranges.h>
 
 #include "iris/sampling/presets.hpp"
+#include "iris/version.hpp"
 #include "iris/embree/intersector.hpp"
 #include "dispatch.hpp"
 #include "windows.hpp"
@@ -114,13 +116,63 @@ void validate(const options& o) {
         throw std::invalid_argument(fmt::format("unknown sampler '{}' (expected independent, sobol or zsobol)", o.sampler));
     if (o.start_spp < 0 || o.start_spp > o.spp)
         throw std::invalid_argument(fmt::format("start spp must be in 0..spp ({}), got {}", o.spp, o.start_spp));
+    if (o.planned_spp < 0 || (o.planned_spp > 0 && o.planned_spp < o.spp))
+        throw std::invalid_argument(fmt::format("planned spp must be 0 (spp) or at least spp ({}), got {}: the sampler's "
+                                                "sequence is laid out for it", o.spp, o.planned_spp));
     if (o.ranks < 1 || o.rank < 0 || o.rank >= o.ranks)
         throw std::invalid_argument(fmt::format("rank {} of {} ranks is not in 0..ranks-1", o.rank, o.ranks));
 }
 
 }  // namespace
 
+struct prepared_scene::parts {
+    explicit parts(std::shared_ptr<const scene_desc> s)
+        : scene(std::move(s)), start(std::chrono::steady_clock::now()), tracer(*scene), lights(*scene),
+          seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) {}
+    std::shared_ptr<const scene_desc> scene;
+    std::chrono::steady_clock::time_point start;  // (before the members it times)
+    embree::intersector tracer;
+    light_sampler lights;
+    double seconds;
+};
+
+prepared_scene::prepared_scene(std::shared_ptr<const scene_desc> scene)
+    : m_parts(std::make_shared<const parts>(std::move(scene))) {}
+prepared_scene::prepared_scene(scene_desc scene) : prepared_scene(std::make_shared<const scene_desc>(std::move(scene))) {}
+prepared_scene prepared_scene::borrow(const scene_desc& scene) {
+    return prepared_scene(std::shared_ptr<const scene_desc>(std::shared_ptr<const scene_desc>(), &scene));  // aliasing, no owner
+}
+const scene_desc& prepared_scene::desc() const noexcept { return *m_parts->scene; }
+double prepared_scene::build_seconds() const noexcept { return m_parts->seconds; }
+
+void check(const options& opt) {
+    validate(opt);
+    config_name(opt.preset);
+    choose_isa(opt.isa);
+}
+
+std::map<std::string, std::string> image_metadata(const std::string& scene_name, const options& opt, const status& st) {
+    std::map<std::string, std::string> m{{"iris:scene", scene_name},
+                                         {"iris:preset", opt.preset},
+                                         {"iris:config", st.config_name},
+                                         {"iris:estimator", st.estimator},
+                                         {"iris:sampler", st.sampler},
+                                         {"iris:spp", std::to_string(st.spp_done)},
+                                         {"iris:seed", std::to_string(opt.seed)},
+                                         {"iris:nthold", std::to_string(opt.nthold)},
+                                         {"iris:nan_inf", std::to_string(st.nan_inf)},
+                                         {"iris:version", std::string(iris::version)}};
+    if (!st.windows.empty()) m["iris:windows"] = st.windows;  // centre:width (nm) of each restriction window
+    return m;
+}
+
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h) {
+    check(opt);  // before the ray tracer is built
+    return render(prepared_scene::borrow(scene), opt, out, h);
+}
+
+status render(const prepared_scene& prepared, const options& opt, film& out, const hooks& h) {
+    const scene_desc& scene = prepared.desc();
     validate(opt);
     const std::string config = config_name(opt.preset);  // throws for an unknown preset
     const isa chosen = choose_isa(opt.isa);
@@ -144,7 +196,6 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
             throw std::invalid_argument(fmt::format("the film to resume fades at sample {}, the render's nthold is {}",
                                                     out.fade_state()->split, opt.nthold));
     }
-    const embree::intersector tracer(scene);
     if (opt.start_spp == 0) try {
         out = film(w, ht);
         if (fades) out.enable_fade(static_cast<std::uint32_t>(opt.nthold));
@@ -164,7 +215,7 @@ status render(const scene_desc& scene, const options& opt, film& out, const hook
     st.isa = isa_names[static_cast<std::size_t>(opt.estimator == "light" || opt.estimator == "bdpt" ? isa::baseline : chosen)];  // the loop run (set again by a preset without a copy)
     st.sampler = opt.sampler;
     const render_fn fn = find_render(opt.estimator, opt.preset, chosen);
-    fn(detail::render_job{scene, tracer, opt, out, st, h});
+    fn(detail::render_job{scene, prepared.get().tracer, prepared.get().lights, opt, out, st, h});
     return st;
 }
 

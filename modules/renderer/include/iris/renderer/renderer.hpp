@@ -15,6 +15,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,6 +65,11 @@ struct options {
     /// passes [start_spp, spp) to it. 0: a new film. Every pixel's sums are exact
     /// (film.hpp), so the result is the same film an uninterrupted render gives.
     int start_spp = 0;
+    /// \brief The sample count the sampler's sequence is laid out for: 0 means `spp`. Only
+    /// `zsobol` depends on it (its Morton scale, ⌈log₂⌉ of it); a caller that adds passes
+    /// a few at a time without knowing the last (the Python `Renderer.step`) sets it once,
+    /// and a zsobol image then equals the one-call render with `spp` = planned_spp.
+    int planned_spp = 0;
     /// \brief Share the passes between `ranks` processes (MPI): this one renders the passes
     /// i with i mod ranks = rank, one per round of `ranks` passes, into its own film; the
     /// films' exact sum (film::merge) is the single-process film. The hooks' `on_pass`
@@ -93,6 +100,27 @@ struct status {
     /// ("464:20,549:20,611:20" for `paper`; placed from the scene's emitters for the `-auto`
     /// presets, iris/sampling/placement.hpp); empty for kernels without windows.
     std::string windows;
+};
+
+/// \brief A scene made ready to render: its ray tracer (Embree's BVH) and light sampler
+/// built once, then shared read-only by every render on it — in sequence (a progressive
+/// caller, a parameter sweep) or at once from several threads. Cheap to copy (shared
+/// ownership); the render on a `scene_desc` builds one for the call.
+class prepared_scene {
+public:
+    /// \throws std::runtime_error if the ray tracer cannot be built.
+    explicit prepared_scene(scene_desc scene);
+    const scene_desc& desc() const noexcept;
+    /// \brief The seconds spent building the ray tracer and the light sampler.
+    double build_seconds() const noexcept;
+    struct parts;  ///< (defined in renderer.cpp)
+    const parts& get() const noexcept { return *m_parts; }
+    /// \brief One over a scene it does not own (no copy): `scene` must outlive it and every copy.
+    static prepared_scene borrow(const scene_desc& scene);
+
+private:
+    explicit prepared_scene(std::shared_ptr<const scene_desc> scene);
+    std::shared_ptr<const parts> m_parts;
 };
 
 /// \brief "464:20,549:20,611:20": windows as `status::windows` writes them.
@@ -134,6 +162,21 @@ struct hooks {
 /// with a message that lists what is accepted; std::runtime_error if the ray tracer cannot
 /// be built.
 status render(const scene_desc& scene, const options& opt, film& out, const hooks& h = {});
+
+/// \brief The same on a prepared scene: no ray tracer or light sampler is built, so many
+/// short renders (a pass at a time, a sweep over presets or seeds) pay for them once.
+/// The result is the same film, bit for bit. Thread-safe for distinct films.
+status render(const prepared_scene& scene, const options& opt, film& out, const hooks& h = {});
+
+/// \brief The checks `render` makes on `opt` before it starts (preset, estimator, sampler,
+/// instruction set, sizes, counts), without rendering. \throws std::invalid_argument
+/// with the message `render` would give.
+void check(const options& opt);
+
+/// \brief The string attributes an image of this render carries (`iris:scene`, `iris:preset`,
+/// `iris:spp`, …; docs/architecture.md): a pure function of the render's key and of the
+/// passes done — no time or machine — so a resumed or distributed render writes the same bytes.
+std::map<std::string, std::string> image_metadata(const std::string& scene_name, const options& opt, const status& st);
 
 /// \brief The instruction sets of the hot loop this build and CPU can run, narrowest
 /// first ("baseline" always; "avx2" = x86-64-v3 on x86-64 with GCC).
