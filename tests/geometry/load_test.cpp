@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include <zlib.h>
+
 #include <iris/geometry/mesh.hpp>
 
 #include "mesh_io.hpp"
@@ -64,6 +66,46 @@ TEST_F(LoadMesh, EveryFormatRoundTripsExactly) {
     EXPECT_TRUE(same(g::load_mesh(write("be.ply", iris::test::to_binary_ply(m, true))), m));
     EXPECT_TRUE(same(g::load_mesh(write("d.PLY", iris::test::to_binary_ply(m, false, true))), m));  // doubles; extension case
     EXPECT_TRUE(g::check_mesh(g::load_mesh(dir / "a.obj")).ok());
+}
+
+/// `bytes` gzip-compressed (zlib's gzip framing, as `gzip` writes).
+std::string gzip(const std::string& bytes) {
+    z_stream z{};
+    if (deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK) return {};
+    std::string out(deflateBound(&z, static_cast<uLong>(bytes.size())) + 32, '\0');
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+    z.avail_in = static_cast<uInt>(bytes.size());
+    z.next_out = reinterpret_cast<Bytef*>(out.data());
+    z.avail_out = static_cast<uInt>(out.size());
+    const int rc = deflate(&z, Z_FINISH);
+    out.resize(z.total_out);
+    deflateEnd(&z);
+    return rc == Z_STREAM_END ? out : std::string();
+}
+
+TEST_F(LoadMesh, GzipCompressedFilesRoundTrip) {
+    const auto m = sample();
+    EXPECT_TRUE(same(g::load_mesh(write("a.ply.gz", gzip(iris::test::to_binary_ply(m, false)))), m));
+    EXPECT_TRUE(same(g::load_mesh(write("a.obj.gz", gzip(iris::test::to_obj(m)))), m));
+    EXPECT_TRUE(same(g::load_mesh(write("a.OFF.GZ", gzip(iris::test::to_off(m)))), m));
+}
+
+TEST_F(LoadMesh, BrokenGzipFilesAreNamedErrors) {
+    const std::string ply = gzip(iris::test::to_ascii_ply(sample()));
+    expect_error("truncated.ply.gz", ply.substr(0, ply.size() / 2), "not a valid gzip file (truncated)");
+    expect_error("plain.ply.gz", iris::test::to_ascii_ply(sample()), "not a valid gzip file");
+    expect_error("empty.ply.gz", "", "not a valid gzip file");
+    expect_error("mesh.txt.gz", ply, "unsupported extension '.txt.gz'");
+    // what a file decompresses to is bounded: 1 MiB of zeros against a 64 KiB limit
+    const std::string bomb = gzip(std::string(1 << 20, '\0'));
+    EXPECT_LT(bomb.size(), 2000u);
+    try {
+        (void)g::gunzip(bomb, "bomb.gz", 1 << 16);
+        ADD_FAILURE() << "no error for a stream beyond the limit";
+    } catch (const g::error& e) {
+        EXPECT_NE(std::string(e.what()).find("decompresses to more than"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(g::gunzip(bomb, "bomb.gz").size(), std::size_t{1} << 20);
 }
 
 // The sample with a normal and a uv per vertex (not unit, awkward digits).

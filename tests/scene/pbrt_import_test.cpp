@@ -12,6 +12,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <zlib.h>
 
 #include <iris/render/materials/coated.hpp>
 #include <iris/scene/scene.hpp>
@@ -350,6 +351,31 @@ TEST(PbrtImport, LoopSubdivisionSurfacesAreBuiltWithTheirNormals) {
         EXPECT_NE(m.find("test.pbrt:9: loopsubdiv"), std::string::npos) << m;
         EXPECT_NE(m.find("loopsubdiv: the control mesh is not an oriented manifold"), std::string::npos) << m;
     }
+}
+
+TEST(PbrtImport, PlyMeshesMayBeGzipCompressed) {
+    const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-gz-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "-1 0 -1\n1 0 -1\n1 0 1\n-1 0 1\n4 0 1 2 3\n";
+    gzFile gz = gzopen((dir / "quad.ply.gz").c_str(), "wb");
+    ASSERT_NE(gz, nullptr);
+    ASSERT_EQ(gzwrite(gz, ply.data(), static_cast<unsigned>(ply.size())), static_cast<int>(ply.size()));
+    gzclose(gz);
+    std::ofstream(dir / "main.pbrt") << camera << "WorldBegin\n" << lamp << "Shape \"plymesh\" \"string filename\" \"quad.ply.gz\"\n";
+    const auto s = iris::scene::load_scene_file(dir / "main.pbrt");
+    ASSERT_EQ(s.shapes.size(), 2u);
+    EXPECT_EQ(s.shapes[1].mesh.triangle_count(), 2u);  // the quad, fanned
+    std::ofstream(dir / "quad.ply.gz", std::ios::trunc) << ply;  // not compressed after all
+    try {
+        (void)iris::scene::load_scene_file(dir / "main.pbrt");
+        ADD_FAILURE() << "no error for a .gz file that is not gzip";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("quad.ply.gz"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("not a valid gzip file"), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
 }
 
 TEST(PbrtImport, IncludesAreReadRelativeToTheMainFileAndCyclesAreRefused) {

@@ -1206,7 +1206,6 @@ private:
             if (f.empty()) fail(t.at, "Shape \"plymesh\" has no \"string filename\"");
             if (ps.find("displacement") || ps.find("edgelength")) fail(t.at, "displaced meshes are not supported");
             const std::filesystem::path p = resolve(f);
-            if (p.extension() == ".gz") fail(t.at, "compressed PLY files are not supported yet: '" + f + "'");
             s.type = shape_type::mesh;
             s.file = p;
         } else if (type == "sphere") {

@@ -94,7 +94,8 @@ triangle_mesh make_sphere(glm::vec3 centre, float radius, unsigned subdivisions)
 /// texture coordinates are read where the file has them (PLY `nx ny nz`, `u v` or `s t`
 /// or `texture_u/v`/`texture_s/t`; OBJ `vn`, `vt`, indexed per corner: an OBJ vertex used
 /// with different normals or uvs becomes one vertex per distinct combination). The mesh
-/// is returned as stored (not checked for closedness; see `check_mesh`).
+/// is returned as stored (not checked for closedness; see `check_mesh`). A `.gz` after the
+/// extension (`mesh.ply.gz`) means a gzip-compressed file (`gunzip`).
 /// \throws error naming the file and the problem: missing or unreadable file, unsupported
 /// extension, parse failure (with the line for text formats), no triangles, non-finite
 /// coordinates, vertex indices out of range; normals or uvs given in part (some components,
@@ -109,5 +110,11 @@ enum class mesh_format { obj, off, ply };
 /// `name` in every error message. The fuzz targets call this.
 /// \throws error as `load_mesh` does (never another exception for any bytes).
 triangle_mesh parse_mesh(std::string_view bytes, mesh_format format, const std::filesystem::path& name);
+
+/// \brief The bytes of a gzip (or zlib) stream, as `load_mesh` reads `mesh.ply.gz`.
+/// \throws error naming `name`: not a gzip stream, truncated, or more than `max_bytes` once
+/// decompressed (a bound on what a small corrupt or hostile file can make iris allocate).
+std::string gunzip(std::string_view compressed, const std::filesystem::path& name,
+                   std::size_t max_bytes = std::size_t{4} << 30);
 
 }  // namespace iris::geometry
