@@ -159,6 +159,7 @@ public:
         m_totals.samples = c.samples;
         m_totals.rays = c.rays;
         m_totals.seconds = c.seconds;
+        m_status.nan_inf = m_film.dropped();
     }
 
     /// \brief Add `passes` passes (samples per pixel); the GIL is released while they render.
@@ -168,8 +169,7 @@ public:
         if (m_opt.planned_spp > 0 && m_spp + passes > m_opt.planned_spp)
             throw py::value_error(fmt::format("{} + {} passes exceed planned_spp = {} (the sampler's sequence is laid out "
                                               "for it)", m_spp, passes, m_opt.planned_spp));
-        std::unique_lock lock(m_busy, std::try_to_lock);
-        if (!lock) throw std::runtime_error("this renderer is already rendering (in another thread)");
+        const auto lock = idle();
         renderer::options opt = m_opt;
         opt.start_spp = m_spp;
         opt.spp = m_spp + passes;
@@ -199,6 +199,7 @@ public:
     }
 
     py::array_t<float> image(const std::string& kind) const {
+        const auto lock = idle();
         if (m_spp == 0) {
             film empty(m_width, m_height);
             return film_image(empty, kind);
@@ -207,6 +208,7 @@ public:
     }
 
     void save(const fs::path& path) const {
+        const auto lock = idle();
         if (m_spp == 0) throw std::runtime_error("nothing to save yet: call step() first");
         std::string ext = path.extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -220,11 +222,13 @@ public:
     }
 
     void save_checkpoint(const fs::path& path) const {
+        const auto lock = idle();
         if (m_spp == 0) throw std::runtime_error("nothing to checkpoint yet: call step() first");
         renderer::write_checkpoint(path, {key(), m_spp, m_totals.samples, m_totals.rays, m_totals.seconds, m_film});
     }
 
     py::dict stats() const {
+        const auto lock = idle();
         py::dict d;
         d["spp"] = m_spp;
         d["seconds"] = m_totals.seconds;
@@ -251,6 +255,14 @@ public:
     }
 
 private:
+    /// \brief The renderer to itself while the lock lives: a step renders into the film
+    /// with the GIL released, so another thread must neither step nor read meanwhile.
+    std::unique_lock<std::mutex> idle() const {
+        std::unique_lock lock(m_busy, std::try_to_lock);
+        if (!lock) throw std::runtime_error("this renderer is rendering in another thread: step, read or save it once that step returns");
+        return lock;
+    }
+
     renderer::checkpoint_key key() const {
         const scene_desc& d = m_scene->prepared.desc();
         return {std::string(iris::version), d.name, iris::scene::fingerprint(d), m_opt.preset, m_opt.estimator,
@@ -268,7 +280,7 @@ private:
         std::uint64_t samples = 0, rays = 0;
         double seconds = 0.0;
     } m_totals;
-    std::mutex m_busy;
+    mutable std::mutex m_busy;
 };
 
 std::unique_ptr<progressive> make_renderer(std::shared_ptr<scene> s, const std::string& preset, const std::string& sampler,
