@@ -261,18 +261,26 @@ inline double tone(double x) {
     return std::clamp((x * x * aces[0] + x * aces[1] + aces[2]) / (x * x * aces[3] + x * aces[4] + aces[5]), 0.0, 1.0);
 }
 
+/// \brief What scoring a pair needs, after its checks: sizes and the kernels at `ppd`.
+struct setup {
+    setup(const image& img, const image& reference, double ppd)
+        : w((require_comparable(img, reference, "flip"), require_ppd(ppd), img.width())),
+          h(img.height()),
+          csf(make_csf_kernels(ppd)),
+          features(make_feature_kernels(ppd)) {}
+    int w, h;
+    csf_kernels csf;
+    feature_kernels features;
+};
+
 }  // namespace detail::flip
 
 /// \brief The per-pixel LDR-ꟻLIP of `img` against `reference` (row-major, values in [0, 1]).
 inline std::vector<float> flip_map(const image& img, const image& reference, double ppd = flip_default_ppd) {
-    detail::require_comparable(img, reference, "flip");
-    detail::flip::require_ppd(ppd);
     using namespace detail::flip;
-    const auto csf = make_csf_kernels(ppd);
-    const auto fk = make_feature_kernels(ppd);
-    const int w = img.width(), h = img.height();
-    return ldr_map(prepare(w, h, [&](std::size_t i) { return rgb_of(img, i); }, csf, fk),
-                   prepare(w, h, [&](std::size_t i) { return rgb_of(reference, i); }, csf, fk));
+    const setup s(img, reference, ppd);
+    return ldr_map(prepare(s.w, s.h, [&](std::size_t i) { return rgb_of(img, i); }, s.csf, s.features),
+                   prepare(s.w, s.h, [&](std::size_t i) { return rgb_of(reference, i); }, s.csf, s.features));
 }
 
 /// \brief The exposures HDR-ꟻLIP scores a reference at.
@@ -313,13 +321,9 @@ inline flip_exposures flip_exposure_range(const image& reference) {
 /// \brief The per-pixel HDR-ꟻLIP of `img` against `reference` (linear sRGB, any range):
 /// the largest LDR-ꟻLIP over the exposures of `flip_exposure_range(reference)`.
 inline std::vector<float> flip_hdr_map(const image& img, const image& reference, double ppd = flip_default_ppd) {
-    detail::require_comparable(img, reference, "flip");
-    detail::flip::require_ppd(ppd);
     using namespace detail::flip;
+    const setup s(img, reference, ppd);
     const flip_exposures e = flip_exposure_range(reference);
-    const auto csf = make_csf_kernels(ppd);
-    const auto fk = make_feature_kernels(ppd);
-    const int w = img.width(), h = img.height();
     std::vector<float> out(reference.pixel_count(), 0.0f);
     for (int k = 0; k < e.count; ++k) {
         const double scale = std::exp2(e.start + k * (e.stop - e.start) / (e.count - 1));
@@ -330,7 +334,8 @@ inline std::vector<float> flip_hdr_map(const image& img, const image& reference,
                 return p;
             };
         };
-        const auto m = ldr_map(prepare(w, h, exposed(img), csf, fk), prepare(w, h, exposed(reference), csf, fk));
+        const auto m = ldr_map(prepare(s.w, s.h, exposed(img), s.csf, s.features),
+                               prepare(s.w, s.h, exposed(reference), s.csf, s.features));
         for (std::size_t i = 0; i < out.size(); ++i) out[i] = std::max(out[i], m[i]);
     }
     return out;
