@@ -48,12 +48,6 @@ std::string existing_file(const fs::path& path, const char* what) {
     return path.string();
 }
 
-bool is_builtin(std::string_view name) {
-    for (const auto& b : iris::scene::builtin_scenes())
-        if (b.name == name) return true;
-    return false;
-}
-
 std::shared_ptr<scene> load(const py::object& source, bool strict) {
     const auto start = std::chrono::steady_clock::now();
     iris::scene::pbrt_import_options import;
@@ -69,7 +63,7 @@ std::shared_ptr<scene> load(const py::object& source, bool strict) {
         desc = iris::scene::parse_scene(text, name, fs::current_path());
     } else if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
         name = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
-        if (!is_builtin(name) && !fs::exists(fs::path(name)))
+        if (!iris::scene::builtin_scene_text(name) && !fs::exists(fs::path(name)))
             raise_file_not_found(fmt::format("'{}' is neither a scene file nor a built-in scene ({})", name,
                                              iris::scene::builtin_scene_names()));
         py::gil_scoped_release unlocked;

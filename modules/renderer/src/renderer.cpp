@@ -126,18 +126,19 @@ void validate(const options& o) {
 }  // namespace
 
 struct prepared_scene::parts {
-    explicit parts(std::shared_ptr<const scene_desc> s)
-        : scene(std::move(s)), start(std::chrono::steady_clock::now()), tracer(*scene), lights(*scene),
-          seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) {}
+    explicit parts(std::shared_ptr<const scene_desc> s) : scene(std::move(s)), tracer(*scene), lights(*scene) {}
     std::shared_ptr<const scene_desc> scene;
-    std::chrono::steady_clock::time_point start;  // (before the members it times)
     embree::intersector tracer;
     light_sampler lights;
-    double seconds;
+    double seconds = 0.0;  ///< building tracer and lights
 };
 
-prepared_scene::prepared_scene(std::shared_ptr<const scene_desc> scene)
-    : m_parts(std::make_shared<const parts>(std::move(scene))) {}
+prepared_scene::prepared_scene(std::shared_ptr<const scene_desc> scene) {
+    const auto start = std::chrono::steady_clock::now();
+    auto p = std::make_shared<parts>(std::move(scene));
+    p->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    m_parts = std::move(p);
+}
 prepared_scene::prepared_scene(scene_desc scene) : prepared_scene(std::make_shared<const scene_desc>(std::move(scene))) {}
 prepared_scene prepared_scene::borrow(const scene_desc& scene) {
     return prepared_scene(std::shared_ptr<const scene_desc>(std::shared_ptr<const scene_desc>(), &scene));  // aliasing, no owner
