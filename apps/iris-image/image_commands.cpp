@@ -238,7 +238,60 @@ void crop(const std::string& in, const std::string& rect_text, const std::string
     for (int y = 0; y < dst.height(); ++y)
         for (int x = 0; x < dst.width(); ++x)
             dst(x, y) = src.pixels(static_cast<int>(r.x) + x, static_cast<int>(r.y) + y);
-    write_output(out, [&] { exr::write(out, dst, src.meta); });
+    // the spectral channels too, if any (the layout's attributes are in the metadata)
+    exr::spectral_image spectral;
+    const std::size_t n = src.spectral.count();
+    spectral.wavelengths = src.spectral.wavelengths;
+    for (int y = 0; y < dst.height(); ++y)
+        for (int x = 0; x < dst.width(); ++x) {
+            const auto i = static_cast<std::size_t>(r.y + y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(r.x + x);
+            spectral.values.insert(spectral.values.end(), src.spectral.values.begin() + static_cast<std::ptrdiff_t>(i * n),
+                                   src.spectral.values.begin() + static_cast<std::ptrdiff_t>((i + 1) * n));
+        }
+    write_output(out, [&] { exr::write(out, dst, src.meta, exr::pixel_type::float32, n > 0 ? &spectral : nullptr); });
+}
+
+// ---- spectrum ---------------------------------------------------------------------------
+
+/// \brief The spectral channels of pixel (X, Y) — or the mean over the (2R + 1)² pixels
+/// around it, clipped to the image — one `wavelength_nm value` line per channel.
+void spectrum(const std::string& in, long long px, long long py, int radius, bool json) {
+    const exr::loaded src = load(in);
+    const std::size_t n = src.spectral.count();
+    if (n == 0)
+        throw usage_error(fmt::format("'{}' has no spectral channels (S0.<wavelength>nm; iris-render --spectral B writes them)", in));
+    const long long w = src.pixels.width(), h = src.pixels.height();
+    if (px < 0 || py < 0 || px >= w || py >= h)
+        throw usage_error(fmt::format("pixel ({}, {}) is outside '{}', which is {}", px, py, in, size_of(src.pixels)));
+    if (radius < 0) throw usage_error(fmt::format("--radius must be >= 0, got {}", radius));
+    std::vector<double> sum(n, 0.0);
+    long long count = 0;
+    for (long long y = std::max(0LL, py - radius); y <= std::min(h - 1, py + radius); ++y)
+        for (long long x = std::max(0LL, px - radius); x <= std::min(w - 1, px + radius); ++x) {
+            const auto i = static_cast<std::size_t>(y * w + x);
+            for (std::size_t b = 0; b < n; ++b) {
+                const float v = src.spectral.values[i * n + b];
+                if (!std::isfinite(v))
+                    throw usage_error(fmt::format("'{}' has a non-finite spectral value at pixel ({}, {}), {} nm", in, x, y,
+                                                  src.spectral.wavelengths[b]));
+                sum[b] += static_cast<double>(v);
+            }
+            ++count;
+        }
+    if (json) {
+        std::string nm, values;
+        for (std::size_t b = 0; b < n; ++b) {
+            nm += fmt::format("{}{}", b ? "," : "", src.spectral.wavelengths[b]);
+            values += fmt::format("{}{:.9g}", b ? "," : "", sum[b] / static_cast<double>(count));
+        }
+        fmt::print("{{\"x\": {}, \"y\": {}, \"pixels\": {}, \"wavelength_nm\": [{}], \"value\": [{}]}}\n", px, py, count, nm,
+                   values);
+        return;
+    }
+    fmt::print("# pixel ({}, {}), mean over {} pixels, units: {}\n", px, py, count,
+               src.meta.count("emissiveUnits") ? src.meta.at("emissiveUnits") : std::string("not given"));
+    for (std::size_t b = 0; b < n; ++b)
+        fmt::print("{} {:.9g}\n", src.spectral.wavelengths[b], sum[b] / static_cast<double>(count));
 }
 
 // ---- error-map ------------------------------------------------------------------------
@@ -338,6 +391,8 @@ void flip_command(const std::string& image_path, const std::string& reference_pa
 void info(const std::string& in) {
     const exr::loaded img = load(in);
     fmt::print("width={} height={}\n", img.pixels.width(), img.pixels.height());
+    if (const std::size_t n = img.spectral.count(); n > 0)
+        fmt::print("spectral_channels={} ({}..{} nm)\n", n, img.spectral.wavelengths.front(), img.spectral.wavelengths.back());
     for (const auto& [key, value] : img.meta) fmt::print("{}={}\n", key, one_line(value));
 }
 
@@ -415,6 +470,19 @@ void add_image_commands(CLI::App& app) {
     flip_cmd->add_option("-o,--output", o->out, "also write the per-pixel error as a false-colour PNG (0 to 1)");
     flip_cmd->add_flag("--json", o->json, "print one JSON object (keys flip mode ppd [start_exposure stop_exposure exposures])");
     flip_cmd->callback([o, flip_opts] { flip_command(o->image, o->reference, flip_opts->first, flip_opts->second, o->out, o->json); });
+
+    auto pixel = std::make_shared<std::pair<long long, long long>>(0, 0);
+    auto spectrum_radius = std::make_shared<int>(0);
+    auto* spectrum_cmd = app.add_subcommand("spectrum", "Print the spectral channels (S0.<wavelength>nm) of one pixel, "
+                                                        "or their mean around it, as 'wavelength_nm value' lines");
+    spectrum_cmd->add_option("IMAGE", o->image, "spectral EXR (iris-render --spectral B)")->required();
+    spectrum_cmd->add_option("X", pixel->first, "column (0 is the left)")->required();
+    spectrum_cmd->add_option("Y", pixel->second, "row (0 is the top)")->required();
+    spectrum_cmd->add_option("--radius", *spectrum_radius, "mean over the (2R+1)^2 pixels around (X, Y), clipped to the image")
+        ->capture_default_str();
+    spectrum_cmd->add_flag("--json", o->json, "print one JSON object (keys x y pixels wavelength_nm value)");
+    spectrum_cmd->callback(
+        [o, pixel, spectrum_radius] { spectrum(o->image, pixel->first, pixel->second, *spectrum_radius, o->json); });
 
     auto* info_cmd = app.add_subcommand("info", "Print the size and string metadata of an EXR");
     info_cmd->add_option("IMAGE", o->image, "input EXR")->required();

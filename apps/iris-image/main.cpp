@@ -24,8 +24,11 @@
 //       (luminance of |IMAGE − REFERENCE|) mapped through a CIELAB ramp (error_ramp.hpp)
 //       with e = S at its top; default S: the 99th percentile of e (nearest rank; the
 //       maximum if that is 0, 1 if the images are equal). Prints the scale used.
+//   iris-image spectrum IMAGE X Y [--radius R] [--json]
+//       the spectral channels (S0.<λ>nm, iris-render --spectral) of pixel (X, Y), or their
+//       mean over the (2R + 1)² pixels around it: one `wavelength_nm value` line each.
 //   iris-image info IMAGE
-//       width, height and the string metadata of IMAGE.
+//       width, height, the spectral channels and the string metadata of IMAGE.
 //
 // Inputs are EXRs with R, G and B channels. Missing, unreadable or non-EXR files,
 // different sizes, NaN/Inf pixels, bad options: one line on stderr, exit status 2, and no

@@ -45,6 +45,7 @@
 #include <iris/renderer/renderer.hpp>
 #include <iris/scene/scene.hpp>
 #include <iris/renderer/checkpoint.hpp>
+#include <iris/renderer/spectral_output.hpp>
 #include <iris/version.hpp>
 #if IRIS_HAVE_MPI
 #include <iris/mpi/mpi.hpp>
@@ -92,6 +93,7 @@ struct args {
     bool unweighted = false;
     std::string paths = "all";
     int spp = 16, threads = 0, nthold = 512, width = 0, height = 0, every = 0, max_depth = 32;
+    int spectral = 0;  ///< spectral bands in the EXR (0: none)
     double every_seconds = 0.0, checkpoint_seconds = 600.0, tev_seconds = 0.25;
     std::string tev;      ///< tev address ("" with --tev alone: the default)
     bool tev_on = false;
@@ -140,7 +142,11 @@ iris::exr::metadata metadata(const iris::scene_desc& s, const iris::renderer::op
 void write_outputs(const iris::scene_desc& s, const args& a, const iris::renderer::options& opt, const iris::film& f,
                    const iris::renderer::status& st) {
     const iris::image img = f.to_image();
-    iris::exr::write(a.out, img, metadata(s, opt, st), a.half ? iris::exr::pixel_type::half : iris::exr::pixel_type::float32);
+    auto meta = metadata(s, opt, st);
+    iris::renderer::add_spectral_metadata(f, meta);
+    const iris::exr::spectral_image spectral = iris::renderer::spectral_channels(f);
+    iris::exr::write(a.out, img, meta, a.half ? iris::exr::pixel_type::half : iris::exr::pixel_type::float32,
+                     spectral.count() > 0 ? &spectral : nullptr);
     if (!a.png.empty()) iris::exr::write_png(a.png, img);
 }
 
@@ -168,7 +174,7 @@ iris::renderer::checkpoint_key key_of(const iris::scene_desc& s, const args& a, 
     if (a.unweighted) estimator += " unweighted";
     if (a.paths != "all") estimator += " paths " + a.paths;
     return {std::string(iris::version), s.name, iris::scene::fingerprint(s), a.preset, estimator, a.sampler, a.seed,
-            a.nthold, a.max_depth, a.spp, width, height};
+            a.nthold, a.max_depth, a.spp, width, height, a.spectral};
 }
 
 /// \brief This run's totals over every rank (samples, rays, dropped samples; rank 0's time).
@@ -301,8 +307,16 @@ int run_render(args a, const ranks_session& mpi) {
                     : a.paths == "rest"      ? iris::bdpt_settings::paths::rest
                                              : iris::bdpt_settings::paths::all;
     opt.sampler = a.sampler;
+    opt.spectral_bins = a.spectral;
     opt.rank = mpi.rank();
     opt.ranks = mpi.size();
+    try {
+        iris::renderer::check(opt);  // every option the renderer refuses, before anything is read or written
+    } catch (const std::invalid_argument& e) {
+        throw iris::app::usage_error(fmt::format("{}{}", a.spectral != 0 && std::string_view(e.what()).find("spectral") !=
+                                                                                 std::string_view::npos ? "--spectral: " : "",
+                                                 e.what()));
+    }
     const int width = a.width > 0 ? a.width : scene.camera.width;
     const int height = a.height > 0 ? a.height : scene.camera.height;
     const bool root = mpi.rank() == 0;
@@ -382,7 +396,8 @@ int run_render(args a, const ranks_session& mpi) {
         iris::film sum = mpi.reduce(local);
         ++totals.gathers;
         totals.gather_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - gather_start).count();
-        totals.gather_bytes = local.sums().size() * iris::film::bytes_per_pixel;
+        totals.gather_bytes = local.sums().size() * (iris::film::bytes_per_pixel + iris::film::spectral_bytes_per_band *
+                                                                         static_cast<std::size_t>(a.spectral));
         if (!root) return;
         const auto write_start = std::chrono::steady_clock::now();
         st.nan_inf = dropped = sum.dropped();
@@ -484,6 +499,11 @@ int main(int argc, char** argv) {
     app.add_option("--height", a.height, "image height (default: the scene's)");
     app.add_option("-o,--output", a.out, "output EXR (linear sRGB, metadata in the header)");
     app.add_option("--png", a.png, "also write an sRGB PNG preview");
+    app.add_option("--spectral", a.spectral,
+                   "also write the spectral radiance in the EXR: B equal bands over the scene's wavelength range, as "
+                   "channels S0.<centre>nm (the spectral layout of Fichet et al. 2021), each the band's mean; exact like "
+                   "the XYZ film, 16*B bytes more per pixel (nee-mis and bsdf-only estimators; 0: none)")
+        ->capture_default_str();
     app.add_option("--stats", a.stats, "write run statistics as JSON");
     app.add_option("--every", a.every, "rewrite the image every K samples per pixel (0: only at the end)")->capture_default_str();
     app.add_option("--every-seconds", a.every_seconds, "rewrite the image every T seconds (0: off)")->capture_default_str();

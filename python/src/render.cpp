@@ -21,6 +21,7 @@
 
 #include "iris/exr/exr.hpp"
 #include "iris/renderer/checkpoint.hpp"
+#include "iris/renderer/spectral_output.hpp"
 #include "iris/renderer/renderer.hpp"
 #include "iris/scene/scene.hpp"
 #include "iris/spectrum/color.hpp"
@@ -84,16 +85,38 @@ py::array_t<float> new_image(int width, int height, int channels) {
                                static_cast<py::ssize_t>(channels)});
 }
 
-/// \brief The film's image as `kind` ("linear_srgb", "srgb", "xyz") into a new array: one
-/// pass over the film, written straight into numpy's buffer.
+/// \brief The film's spectral layer as float32 (H, W, bands): each band's mean spectral
+/// radiance (film::spectral_mean).
+py::array_t<float> spectral_image(const film& f) {
+    const film::spectral_parts* sp = f.spectral_state();
+    if (!sp)
+        throw py::value_error("this render has no spectral output: make the Renderer with spectral=B (bands) for "
+                              "image('spectral')");
+    const auto n = static_cast<std::size_t>(sp->bands.count);
+    auto out = new_image(f.width(), f.height(), sp->bands.count);
+    float* px = out.mutable_data();
+    {
+        py::gil_scoped_release unlocked;
+        std::vector<double> row(n);
+        for (std::size_t i = 0; i < f.sums().size(); ++i) {
+            f.spectral_mean(i, row.data());
+            for (std::size_t o = 0; o < n; ++o) px[i * n + o] = static_cast<float>(row[o]);
+        }
+    }
+    return out;
+}
+
+/// \brief The film's image as `kind` ("linear_srgb", "srgb", "xyz", "spectral") into a new
+/// array: one pass over the film, written straight into numpy's buffer.
 py::array_t<float> film_image(const film& f, std::string_view kind) {
     enum class as { linear, encoded, xyz_values };
     as k;
     if (kind == "linear_srgb") k = as::linear;
     else if (kind == "srgb") k = as::encoded;
     else if (kind == "xyz") k = as::xyz_values;
+    else if (kind == "spectral") return spectral_image(f);
     else
-        throw py::value_error(fmt::format("unknown image kind '{}' (expected linear_srgb, srgb or xyz)", kind));
+        throw py::value_error(fmt::format("unknown image kind '{}' (expected linear_srgb, srgb, xyz or spectral)", kind));
     auto out = new_image(f.width(), f.height(), 3);
     float* px = out.mutable_data();
     {
@@ -196,6 +219,7 @@ public:
         const auto lock = idle();
         if (m_spp == 0) {
             film empty(m_width, m_height);
+            if (m_opt.spectral_bins > 0) empty.enable_spectral(bands());
             return film_image(empty, kind);
         }
         return film_image(m_film, kind);
@@ -211,8 +235,14 @@ public:
                                               path.string()));
         const iris::image img = m_film.to_image();
         py::gil_scoped_release unlocked;
-        if (ext == ".png") exr::write_png(path, img);
-        else exr::write(path, img, renderer::image_metadata(m_scene->prepared.desc().name, m_opt, m_status));
+        if (ext == ".png") {
+            exr::write_png(path, img);
+            return;
+        }
+        auto meta = renderer::image_metadata(m_scene->prepared.desc().name, m_opt, m_status);
+        renderer::add_spectral_metadata(m_film, meta);
+        const exr::spectral_image spectral = renderer::spectral_channels(m_film);
+        exr::write(path, img, meta, exr::pixel_type::float32, spectral.count() > 0 ? &spectral : nullptr);
     }
 
     void save_checkpoint(const fs::path& path) const {
@@ -241,6 +271,11 @@ public:
     }
 
     int spp() const noexcept { return m_spp; }
+    /// \brief The spectral bands (none unless spectral > 0).
+    spectral_bands bands() const noexcept {
+        const scene_desc& d = m_scene->prepared.desc();
+        return {m_opt.spectral_bins, d.lambda_min, d.lambda_max};
+    }
     double seconds() const noexcept { return m_totals.seconds; }
     const renderer::options& options() const noexcept { return m_opt; }
     std::shared_ptr<scene> scene_ref() const { return m_scene; }
@@ -261,7 +296,7 @@ private:
         const scene_desc& d = m_scene->prepared.desc();
         return {std::string(iris::version), d.name, iris::scene::fingerprint(d), m_opt.preset, m_opt.estimator,
                 m_opt.sampler, m_opt.seed, m_opt.nthold, m_opt.path.max_depth,
-                m_opt.planned_spp > 0 ? m_opt.planned_spp : std::max(1, m_spp), m_width, m_height};
+                m_opt.planned_spp > 0 ? m_opt.planned_spp : std::max(1, m_spp), m_width, m_height, m_opt.spectral_bins};
     }
 
     std::shared_ptr<scene> m_scene;
@@ -280,7 +315,8 @@ private:
 std::unique_ptr<progressive> make_renderer(std::shared_ptr<scene> s, const std::string& preset, const std::string& sampler,
                                            std::uint64_t seed, int nthold, int threads, int width, int height,
                                            std::optional<int> max_depth, const std::string& estimator,
-                                           const std::string& isa, int planned_spp, std::optional<fs::path> resume) {
+                                           const std::string& isa, int planned_spp, int spectral,
+                                           std::optional<fs::path> resume) {
     if (!s) throw py::type_error("Renderer needs a scene (iris.load(...))");
     renderer::options opt;
     opt.preset = preset;
@@ -298,6 +334,7 @@ std::unique_ptr<progressive> make_renderer(std::shared_ptr<scene> s, const std::
     opt.estimator = estimator;
     opt.isa = isa;
     opt.planned_spp = planned_spp;
+    opt.spectral_bins = spectral;
     if (planned_spp < 0) throw py::value_error(fmt::format("planned_spp must be >= 0, got {}", planned_spp));
     if (sampler == "zsobol" && planned_spp == 0)
         throw py::value_error("sampler zsobol lays its points out for a known sample count: give planned_spp (the "
@@ -322,12 +359,28 @@ py::dict read_checkpoint_dict(const fs::path& path) {
     d["planned_spp"] = c.key.spp;
     d["width"] = c.key.width;
     d["height"] = c.key.height;
+    d["spectral_bins"] = c.key.spectral_bins;
     d["spp"] = c.spp_done;
     d["samples"] = c.samples;
     d["rays"] = c.rays;
     d["seconds"] = c.seconds;
     d["image"] = film_image(c.image, "linear_srgb");
+    if (c.image.spectral_state()) d["spectral"] = spectral_image(c.image);
     return d;
+}
+
+/// \brief An EXR's spectral channels (S0.<λ>nm): wavelengths (nm) and float32 (H, W, B).
+py::tuple read_spectral(const fs::path& path) {
+    auto loaded = exr::read(existing_file(path, "image"));
+    const auto n = loaded.spectral.count();
+    if (n == 0)
+        throw py::value_error(fmt::format("'{}' has no spectral channels (S0.<wavelength>nm; iris-render --spectral B writes "
+                                          "them)", path.string()));
+    py::array_t<double> nm(static_cast<py::ssize_t>(n));
+    std::copy(loaded.spectral.wavelengths.begin(), loaded.spectral.wavelengths.end(), nm.mutable_data());
+    auto out = new_image(loaded.pixels.width(), loaded.pixels.height(), static_cast<int>(n));
+    std::copy(loaded.spectral.values.begin(), loaded.spectral.values.end(), out.mutable_data());
+    return py::make_tuple(nm, out);
 }
 
 py::tuple read_image(const fs::path& path) {
@@ -386,18 +439,29 @@ void add_render(py::module_& m) {
              py::arg("sampler") = "sobol", py::arg("seed") = 1, py::arg("nthold") = 512, py::arg("threads") = 0,
              py::arg("width") = 0, py::arg("height") = 0, py::arg("max_depth") = py::none(),
              py::arg("estimator") = "nee-mis", py::arg("isa") = "auto", py::arg("planned_spp") = 0,
-             py::arg("resume") = py::none(),
+             py::arg("spectral") = 0, py::arg("resume") = py::none(),
              "preset: iris.presets(); sampler: sobol, zsobol or independent; width/height 0: the scene's; max_depth "
              "None: the scene file's suggestion or 32; estimator: nee-mis, bdpt, light or bsdf-only; planned_spp: the "
-             "sample count zsobol's sequence is laid out for (0: any, not zsobol); resume: a checkpoint of this key.")
+             "sample count zsobol's sequence is laid out for (0: any, not zsobol); spectral: B > 0 keeps the spectral radiance "
+             "in B equal bands over the scene's wavelength range (image('spectral'), wavelengths; nee-mis and "
+             "bsdf-only); resume: a checkpoint of this key.")
         .def("step", &progressive::step, py::arg("spp") = 1, "Render spp more passes (samples per pixel).")
         .def("image", &progressive::image, py::arg("kind") = "linear_srgb",
-             "The image as float32 (H, W, 3): linear_srgb (the EXR's values), srgb (clamped, encoded: the PNG's) or xyz.")
+             "The image as float32 (H, W, 3): linear_srgb (the EXR's values), srgb (clamped, encoded: the PNG's) or xyz; "
+             "or spectral: (H, W, B), each band's mean spectral radiance (Renderer(..., spectral=B)).")
         .def("save", &progressive::save, py::arg("path"),
-             "Write the image: .exr (float32 linear sRGB with iris-render's metadata) or .png; atomically.")
+             "Write the image: .exr (float32 linear sRGB with iris-render's metadata, and the spectral channels with "
+             "spectral=B) or .png; atomically.")
         .def("save_checkpoint", &progressive::save_checkpoint, py::arg("path"),
              "Write the exact film (iris-render's checkpoint format); Renderer(..., resume=path) goes on from it.")
         .def_property_readonly("spp", &progressive::spp, "passes done")
+        .def_property_readonly("wavelengths", [](const progressive& r) -> py::object {
+            const spectral_bands b = r.bands();
+            if (b.count == 0) return py::none();
+            py::array_t<double> nm(b.count);
+            for (int o = 0; o < b.count; ++o) nm.mutable_data()[o] = b.centre(o);
+            return nm;
+        }, "the spectral bands' centres in nm (None without spectral output)")
         .def_property_readonly("seconds", &progressive::seconds, "seconds spent rendering passes")
         .def_property_readonly("stats", &progressive::stats, "spp, seconds, samples, rays, nan_inf (samples dropped), ...")
         .def_property_readonly("metadata", &progressive::metadata, "the EXR attributes save() writes")
@@ -416,6 +480,8 @@ void add_render(py::module_& m) {
     m.def("read_checkpoint", &read_checkpoint_dict, py::arg("path"),
           "A checkpoint's key, counts and image (linear sRGB, float32 (H, W, 3)) as a dict.");
     m.def("read_image", &read_image, py::arg("path"), "An EXR's RGB as float32 (H, W, 3) and its string attributes.");
+    m.def("read_spectral", &read_spectral, py::arg("path"),
+          "An EXR's spectral channels (S0.<wavelength>nm, Fichet et al. 2021) as (wavelengths in nm, float32 (H, W, B)).");
 }
 
 }  // namespace iris::python

@@ -118,6 +118,46 @@ def test_checkpoint_resume_equals_uninterrupted(tmp_path, cubes):
         iris.read_checkpoint(tmp_path / "missing.ckpt")
 
 
+# ---- spectral output -------------------------------------------------------------------
+
+def test_spectral_image_is_what_the_cli_writes(tmp_path, cubes):
+    # the numpy spectrum, iris-render --spectral's EXR channels and Renderer.save's file:
+    # bit for bit, with the same RGB as without the layer
+    cli_render(tmp_path, "spec", "--preset", "paper", "--spp", "3", "--spectral", "8")
+    nm_cli, values_cli = iris.read_spectral(tmp_path / "spec.exr")
+    r = iris.Renderer(cubes, preset="paper", width=W, height=H, spectral=8)
+    assert r.image("spectral").shape == (H, W, 8) and not r.image("spectral").any()  # before the first pass
+    r.step(1)
+    r.step(2)
+    s = r.image("spectral")
+    assert s.dtype == np.float32 and s.shape == (H, W, 8)
+    assert np.array_equal(r.wavelengths, nm_cli) and nm_cli[0] == 380 + 25 and nm_cli[-1] == 780 - 25
+    assert np.array_equal(s, values_cli)
+    assert s.min() >= 0 and s.max() > 0
+    r.save(tmp_path / "py.exr")
+    assert (tmp_path / "py.exr").read_bytes() == (tmp_path / "spec.exr").read_bytes()
+    plain = iris.Renderer(cubes, preset="paper", width=W, height=H)
+    plain.step(3)
+    assert np.array_equal(plain.image(), r.image())
+    assert plain.wavelengths is None
+    with pytest.raises(ValueError, match="no spectral output"):
+        plain.image("spectral")
+    with pytest.raises(ValueError, match="no spectral channels"):
+        plain.save(tmp_path / "plain.exr")
+        iris.read_spectral(tmp_path / "plain.exr")
+    r.save_checkpoint(tmp_path / "s.ckpt")
+    c = iris.read_checkpoint(tmp_path / "s.ckpt")
+    assert c["spectral_bins"] == 8 and np.array_equal(c["spectral"], s)
+    b = iris.Renderer(cubes, preset="paper", width=W, height=H, spectral=8, resume=tmp_path / "s.ckpt")
+    assert np.array_equal(b.image("spectral"), s)
+    with pytest.raises(ValueError, match="its spectral_bins is 8, this render's is 4"):
+        iris.Renderer(cubes, preset="paper", width=W, height=H, spectral=4, resume=tmp_path / "s.ckpt")
+    with pytest.raises(ValueError, match="splats onto other pixels"):
+        iris.Renderer(cubes, estimator="bdpt", spectral=4)
+    with pytest.raises(ValueError, match="spectral bins must be 0"):
+        iris.Renderer(cubes, spectral=-1)
+
+
 # ---- one scene, many renders --------------------------------------------------------
 
 def test_scene_outlives_its_name(cubes):

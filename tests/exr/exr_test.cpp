@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 
 #include <signal.h>
@@ -39,6 +40,41 @@ TEST_F(ExrTest, FloatRoundTripIsExactAndKeepsMetadata) {
     EXPECT_EQ(back.pixels, img);
     EXPECT_EQ(back.meta.at("iris:spp"), "64");
     EXPECT_EQ(back.meta.at("iris:preset"), "paper");
+}
+
+// Spectral channels (Fichet et al. 2021's layout) beside RGB: named S0.<λ>nm with a
+// decimal comma, the layout's attributes, read back exactly and sorted by wavelength (also
+// from a half RGB file); bad channel names are refused with the reason.
+TEST_F(ExrTest, SpectralChannelsRoundTripInTheSpectralLayout) {
+    EXPECT_EQ(iris::exr::spectral_channel_name(550.0), "S0.550nm");
+    EXPECT_EQ(iris::exr::spectral_channel_name(392.5), "S0.392,5nm");
+    EXPECT_EQ(iris::exr::spectral_channel_wavelength("S0.392,5nm"), 392.5);
+    EXPECT_EQ(iris::exr::spectral_channel_wavelength("S0.392.5nm"), 392.5);
+    EXPECT_EQ(iris::exr::spectral_channel_wavelength("R"), std::nullopt);
+    EXPECT_THROW((void)iris::exr::spectral_channel_wavelength("S0.5um"), iris::exr::error);
+    EXPECT_THROW((void)iris::exr::spectral_channel_wavelength("S0.abcnm"), iris::exr::error);
+    EXPECT_THROW((void)iris::exr::spectral_channel_wavelength("S0.-5nm"), iris::exr::error);
+
+    const auto img = ramp(5, 3);
+    iris::exr::spectral_image sp;
+    sp.wavelengths = {392.5, 417.5, 650.0};
+    for (std::size_t i = 0; i < img.pixel_count(); ++i)
+        for (std::size_t b = 0; b < 3; ++b) sp.values.push_back(static_cast<float>(i) + 0.125f * static_cast<float>(b));
+    for (auto type : {iris::exr::pixel_type::float32, iris::exr::pixel_type::half}) {
+        iris::exr::write(dir / "s.exr", img, {{"iris:spp", "4"}}, type, &sp);
+        const auto back = iris::exr::read(dir / "s.exr");
+        EXPECT_EQ(back.spectral.wavelengths, sp.wavelengths);
+        EXPECT_EQ(back.spectral.values, sp.values) << "float32 whatever the RGB type";
+        EXPECT_EQ(back.meta.at("spectralLayoutVersion"), "1.0");
+        EXPECT_EQ(back.meta.at("emissiveUnits"), "W.m^-2.sr^-1");
+        EXPECT_EQ(back.meta.at("iris:spp"), "4");
+    }
+    const auto plain = (iris::exr::write(dir / "p.exr", img), iris::exr::read(dir / "p.exr"));
+    EXPECT_EQ(plain.spectral.count(), 0u);
+    EXPECT_EQ(plain.meta.count("spectralLayoutVersion"), 0u);
+    sp.values.pop_back();
+    EXPECT_THROW(iris::exr::write(dir / "bad.exr", img, {}, iris::exr::pixel_type::float32, &sp), iris::exr::error);
+    EXPECT_FALSE(fs::exists(dir / "bad.exr"));
 }
 
 TEST_F(ExrTest, HalfRoundTripIsCloseToHalfPrecision) {

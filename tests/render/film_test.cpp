@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -241,4 +242,127 @@ TEST(Film, PassesFallOnTheFadeLayersSidesByTheirIndex) {
             EXPECT_EQ(a[c].second.var_mean, b[c].second.var_mean);
         }
     }
+}
+
+// ---- the spectral layer ------------------------------------------------------------------
+
+namespace spectral {
+
+const iris::spectral_bands bands{4, 400.0, 800.0};  // 100 nm each
+
+}  // namespace spectral
+
+// Contributions land in the band holding their wavelength (edges: the upper band; λmax:
+// the last), the mean is sum ÷ (samples · width), the row is cleared, and the XYZ sums are
+// those of a film without the layer.
+TEST(FilmSpectral, ContributionsLandInTheirBandAndTheMeanIsPerNanometre) {
+    EXPECT_EQ(spectral::bands.index(399.999), -1);
+    EXPECT_EQ(spectral::bands.index(400.0), 0);
+    EXPECT_EQ(spectral::bands.index(499.999), 0);
+    EXPECT_EQ(spectral::bands.index(500.0), 1);
+    EXPECT_EQ(spectral::bands.index(800.0), 3);
+    EXPECT_EQ(spectral::bands.index(800.001), -1);
+    EXPECT_EQ(spectral::bands.index(std::numeric_limits<double>::quiet_NaN()), -1);
+    EXPECT_DOUBLE_EQ(spectral::bands.centre(1), 550.0);
+
+    iris::film f(2, 1), plain(2, 1);
+    f.enable_spectral(spectral::bands);
+    std::vector<double> row(4, 0.0);
+    iris::spectral_row r(spectral::bands, row.data());
+    r.add(450.0, 10.0);
+    r.add(460.0, 30.0);
+    r.add(799.0, 200.0);
+    r.add(900.0, 1e6);  // outside: left out
+    f.add(1, {1.0, 2.0, 3.0}, 0, row.data());
+    plain.add(1, {1.0, 2.0, 3.0}, 0);
+    EXPECT_EQ(row, std::vector<double>(4, 0.0)) << "the film clears the row it summed";
+    r.add(550.0, 50.0);
+    f.add(1, {1.0, 2.0, 3.0}, 1, row.data());
+    plain.add(1, {1.0, 2.0, 3.0}, 1);
+    std::vector<double> mean(4);
+    f.spectral_mean(1, mean.data());
+    EXPECT_DOUBLE_EQ(mean[0], 40.0 / (2 * 100.0));
+    EXPECT_DOUBLE_EQ(mean[1], 50.0 / (2 * 100.0));
+    EXPECT_DOUBLE_EQ(mean[2], 0.0);
+    EXPECT_DOUBLE_EQ(mean[3], 200.0 / (2 * 100.0));
+    f.spectral_mean(0, mean.data());
+    EXPECT_EQ(mean, std::vector<double>(4, 0.0)) << "no samples: 0";
+    EXPECT_EQ(f.sum(1), plain.sum(1));
+    EXPECT_EQ(f.spectral_state()->dropped, 0u);
+    EXPECT_EQ(iris::film::spectral_bytes_per_band, 16u);
+}
+
+// A row with a band out of range is dropped (counted) while its XYZ is summed; a sample
+// whose XYZ is dropped adds no row either (and is not counted twice).
+TEST(FilmSpectral, ABadRowIsDroppedAndCountedApartFromItsXyz) {
+    iris::film f(1, 1);
+    f.enable_spectral(spectral::bands);
+    std::vector<double> row(4, 0.0);
+    row[2] = std::numeric_limits<double>::infinity();
+    f.add(0, {1.0, 1.0, 1.0}, 0, row.data());
+    EXPECT_EQ(f.spectral_state()->dropped, 1u);
+    EXPECT_EQ(f.dropped(), 0u);
+    EXPECT_EQ(f.sum(0).y, iris::film::to_fixed(1.0));
+    row[1] = 5.0;
+    f.add(0, {std::numeric_limits<double>::quiet_NaN(), 1.0, 1.0}, 1, row.data());
+    EXPECT_EQ(f.dropped(), 1u);
+    EXPECT_EQ(f.spectral_state()->dropped, 1u);
+    row[0] = iris::film::max_sample;  // out of range, finite
+    f.add(0, {1.0, 1.0, 1.0}, 2, row.data());
+    EXPECT_EQ(f.spectral_state()->dropped, 2u);
+    for (auto s : f.spectral_state()->sums) EXPECT_EQ(s, 0);
+}
+
+// Order independence, merging and the parts round trip, as for the XYZ sums; films with
+// other bands do not merge; a spectral film takes no pass of splats; enabling needs an
+// empty film and real bands.
+TEST(FilmSpectral, SumsAreExactMergeAndRoundTripThroughTheirParts) {
+    std::mt19937_64 gen(3);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), lambda(400.0, 800.0), exponent(-10.0, 8.0);
+    struct sample {
+        double lambda, v;
+    };
+    std::vector<sample> v(2000);
+    for (auto& s : v) s = {lambda(gen), unit(gen) * std::pow(10.0, exponent(gen))};
+    const auto fill = [&](const std::vector<sample>& samples) {
+        iris::film f(1, 1);
+        f.enable_spectral(spectral::bands);
+        std::vector<double> row(4, 0.0);
+        iris::spectral_row r(spectral::bands, row.data());
+        for (std::size_t k = 0; k < samples.size(); ++k) {
+            r.add(samples[k].lambda, samples[k].v);
+            f.add(0, {1.0, 1.0, 1.0}, k, row.data());
+        }
+        return f;
+    };
+    auto reversed = v;
+    std::reverse(reversed.begin(), reversed.end());
+    const iris::film a = fill(v), b = fill(reversed);
+    EXPECT_EQ(a.spectral_state()->sums, b.spectral_state()->sums);
+
+    iris::film first = fill({v.begin(), v.begin() + 700});
+    first.merge(fill({v.begin() + 700, v.end()}));
+    EXPECT_EQ(first.spectral_state()->sums, a.spectral_state()->sums);
+
+    const auto* sp = a.spectral_state();
+    const iris::film c = iris::film::from_parts(1, 1, {a.sums().begin(), a.sums().end()}, {a.counts().begin(), a.counts().end()},
+                                                {a.dropped_counts().begin(), a.dropped_counts().end()}, std::nullopt, *sp);
+    EXPECT_EQ(c.spectral_state()->sums, sp->sums);
+    EXPECT_EQ(c.spectral_state()->bands, sp->bands);
+    auto short_parts = *sp;
+    short_parts.sums.pop_back();
+    EXPECT_THROW(iris::film::from_parts(1, 1, {a.sums().begin(), a.sums().end()}, {a.counts().begin(), a.counts().end()},
+                                        {a.dropped_counts().begin(), a.dropped_counts().end()}, std::nullopt, short_parts),
+                 std::invalid_argument);
+
+    iris::film other(1, 1);
+    other.enable_spectral({8, 400.0, 800.0});
+    iris::film copy = a;
+    EXPECT_THROW(copy.merge(other), std::invalid_argument);
+    EXPECT_THROW(copy.merge(iris::film(1, 1)), std::invalid_argument);
+    EXPECT_THROW(copy.begin_pass(), std::logic_error);
+    EXPECT_THROW(copy.enable_spectral(spectral::bands), std::logic_error);
+    iris::film empty(1, 1);
+    EXPECT_THROW(empty.enable_spectral({0, 400.0, 800.0}), std::invalid_argument);
+    EXPECT_THROW(empty.enable_spectral({4, 800.0, 400.0}), std::invalid_argument);
 }

@@ -29,7 +29,7 @@ public:
     explicit poisoned_integrator(const iris::pinhole_camera& c) : m_tan(std::tan(0.5f * c.fov_y_degrees * 3.14159265f / 180.0f)) {}
 
     iris::path_sample trace(const no_tracer&, glm::vec3, glm::vec3 d, const no_distribution&, float,
-                            iris::sample_stream& rng) const noexcept {
+                            iris::sample_stream& rng, iris::spectral_row* = nullptr) const noexcept {
         const float sx = (d.x / -d.z) / (m_tan * static_cast<float>(width) / static_cast<float>(height));
         const float sy = (d.y / -d.z) / m_tan;
         const int x = static_cast<int>(std::floor((sx + 1.0f) * 0.5f * width));

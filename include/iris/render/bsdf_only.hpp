@@ -56,10 +56,12 @@ public:
     }
 
     /// \brief One path from `origin` along unit `dir`. The distribution and α of the
-    /// renderer's loop are ignored (this estimator has no wavelength policy).
+    /// renderer's loop are ignored (this estimator has no wavelength policy). With
+    /// `spectral`, the sample's one point contribution, (λ, (λmax − λmin) · L(λ)), is added
+    /// to it (iris/render/spectral_bands.hpp).
     template <Intersector Tracer, class Distribution>
     path_sample trace(const Tracer& tracer, glm::vec3 origin, glm::vec3 dir, const Distribution& /*unused*/,
-                      float /*alpha*/, sample_stream& rng) const noexcept {
+                      float /*alpha*/, sample_stream& rng, spectral_row* spectral = nullptr) const noexcept {
         path_sample out;
         const float width = m_scene.lambda_max - m_scene.lambda_min;
         float lambda = m_scene.lambda_min + rng.next() * width;
@@ -107,6 +109,7 @@ public:
         const double w = radiance * static_cast<double>(width) / cie::y_integral;
         const double l = static_cast<double>(lambda);
         out.value = {w * cie::x_bar(l), w * cie::y_bar(l), w * cie::z_bar(l)};
+        if (spectral) spectral->add(l, radiance * static_cast<double>(width));
         return out;
     }
 

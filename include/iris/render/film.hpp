@@ -26,6 +26,14 @@
 /// own (light tracing, bidirectional connections to the camera) hands the film a whole pass
 /// of splats; each pixel takes one sample per pass, the exact sum of what landed on it. The
 /// state above stays what it is, so all of it holds for such renders too.
+///
+/// **The spectral layer** (`enable_spectral`, off unless switched on): per pixel, the
+/// exact sums of each sample's point contributions per band (iris/render/spectral_bands.hpp),
+/// in the same fixed point as XYZ — 16 bytes per band per pixel (`spectral_bytes_per_band`).
+/// A sample's row is summed where its XYZ is; a row with a band out of range while its XYZ
+/// is summable adds nothing and is counted (`spectral_dropped`). Checkpoints and the ranks'
+/// reduction carry it, so it is as exact and deterministic as the XYZ sums. Splatting
+/// estimators (add_pass) have no spectral layer.
 
 #include <array>
 #include <cmath>
@@ -39,6 +47,7 @@
 
 #include "iris/image.hpp"
 #include "iris/render/fade.hpp"
+#include "iris/render/spectral_bands.hpp"
 #include "iris/spectrum/color.hpp"
 
 namespace iris {
@@ -105,6 +114,55 @@ public:
         if (m_fade) m_fade->add(i, ok ? v : xyz{}, sample);
     }
 
+    /// \brief `add` with the sample's spectral row (`spectral_bands().count` values, which
+    /// are read and set to 0): summed into the spectral layer where the XYZ value is summed.
+    /// Only with the spectral layer.
+    void add(std::size_t i, const xyz& v, std::uint64_t sample, double* row) noexcept {
+        add(i, v, sample);
+        spectral_parts& sp = *m_spectral;
+        const auto n = static_cast<std::size_t>(sp.bands.count);
+        const bool xyz_ok = summable(v.x) && summable(v.y) && summable(v.z);
+        bool ok = xyz_ok;
+        for (std::size_t o = 0; o < n; ++o) ok = ok && summable(row[o]);
+        if (ok) {
+            exact_int* s = &sp.sums[i * n];
+            for (std::size_t o = 0; o < n; ++o) s[o] += to_fixed(row[o]);
+        } else if (xyz_ok) {
+            ++sp.dropped;
+        }
+        for (std::size_t o = 0; o < n; ++o) row[o] = 0.0;
+    }
+
+    /// \brief The spectral layer's state: its bands, per pixel (row-major) the exact sums of
+    /// every band's contributions, and the rows dropped while their XYZ was summed.
+    struct spectral_parts {
+        spectral_bands bands;
+        std::vector<exact_int> sums;  ///< pixel i's band o at i · bands.count + o
+        std::uint64_t dropped = 0;
+    };
+    /// \brief Switch the spectral layer on (a film without samples). Memory:
+    /// spectral_bytes_per_band · bands.count more per pixel.
+    /// \throws std::logic_error if the film has samples, std::invalid_argument for no bands
+    /// or an empty range.
+    void enable_spectral(const spectral_bands& bands) {
+        for (auto c : m_count)
+            if (c != 0) throw std::logic_error("film::enable_spectral: the film already has samples");
+        if (bands.count < 1 || !(bands.lambda_max > bands.lambda_min))
+            throw std::invalid_argument("film::enable_spectral: no bands, or an empty wavelength range");
+        m_spectral.emplace(spectral_parts{bands, std::vector<exact_int>(m_sum.size() * static_cast<std::size_t>(bands.count)), 0});
+    }
+    static constexpr std::size_t spectral_bytes_per_band = sizeof(exact_int);
+    /// \brief The spectral layer (nullptr without one).
+    const spectral_parts* spectral_state() const noexcept { return m_spectral ? &*m_spectral : nullptr; }
+    /// \brief Pixel i's mean spectral radiance per band (`out` has bands.count entries): the
+    /// band's sum ÷ (samples · band width) — 0 before the first sample. Only with the layer.
+    void spectral_mean(std::size_t i, double* out) const noexcept {
+        const spectral_parts& sp = *m_spectral;
+        const auto n = static_cast<std::size_t>(sp.bands.count);
+        const double d = static_cast<double>(m_count[i]) * sp.bands.width();
+        for (std::size_t o = 0; o < n; ++o) out[o] = m_count[i] == 0 ? 0.0 : static_cast<double>(sp.sums[i * n + o]) * 0x1p-56 / d;
+    }
+
     /// \brief Add one pass of an estimator that splats (light tracing, bidirectional
     /// connections to the camera): every pixel takes **one sample**, the sum of the splats
     /// that landed on it in this pass — 0 where none did. `lists` is a range of ranges of
@@ -138,6 +196,7 @@ public:
     /// chunked changes nothing.
     /// @{
     void begin_pass() {
+        if (m_spectral) throw std::logic_error("film: a pass of splats cannot fill a spectral layer");
         const std::size_t n = m_sum.size();
         m_pass.assign(n, exact_xyz{});
         m_pass_bad.assign(n, 0);
@@ -348,7 +407,8 @@ public:
     /// has more dropped samples than samples, or (fade layer) the split is 0 or a pixel has
     /// more early samples than samples or than the split.
     static film from_parts(int width, int height, std::vector<exact_xyz> sums, std::vector<std::uint32_t> counts,
-                           std::vector<std::uint32_t> dropped, std::optional<fade_parts> fade = std::nullopt) {
+                           std::vector<std::uint32_t> dropped, std::optional<fade_parts> fade = std::nullopt,
+                           std::optional<spectral_parts> spectral = std::nullopt) {
         film f(0, 0);
         const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
         if (width < 0 || height < 0 || sums.size() != n || counts.size() != n || dropped.size() != n)
@@ -364,7 +424,11 @@ public:
                 if (fade->early_count[i] > counts[i] || fade->early_count[i] > fade->split)
                     throw std::invalid_argument("film::from_parts: a pixel has more early samples than samples or than the split");
         }
+        if (spectral && (spectral->bands.count < 1 || !(spectral->bands.lambda_max > spectral->bands.lambda_min) ||
+                         spectral->sums.size() != n * static_cast<std::size_t>(spectral->bands.count)))
+            throw std::invalid_argument("film::from_parts: the spectral layer has no bands or not width x height x bands sums");
         f.m_fade = std::move(fade);
+        f.m_spectral = std::move(spectral);
         f.m_width = width;
         f.m_height = height;
         f.m_sum = std::move(sums);
@@ -381,9 +445,16 @@ public:
             throw std::invalid_argument("film::merge: the films differ in size");
         if (fades() != other.fades() || (fades() && m_fade->split != other.m_fade->split))
             throw std::invalid_argument("film::merge: one film fades and the other does not, or they split at different samples");
+        if (m_spectral.has_value() != other.m_spectral.has_value() ||
+            (m_spectral && m_spectral->bands != other.m_spectral->bands))
+            throw std::invalid_argument("film::merge: the films' spectral layers differ (one has none, or other bands)");
         for (std::size_t i = 0; i < m_sum.size(); ++i)
             if (other.m_count[i] > UINT32_MAX - m_count[i]) throw std::overflow_error("film::merge: more than 2^32 - 1 samples in a pixel");
         if (m_fade) m_fade->merge(*other.m_fade);
+        if (m_spectral) {
+            for (std::size_t k = 0; k < m_spectral->sums.size(); ++k) m_spectral->sums[k] += other.m_spectral->sums[k];
+            m_spectral->dropped += other.m_spectral->dropped;
+        }
         for (std::size_t i = 0; i < m_sum.size(); ++i) {
             m_sum[i].x += other.m_sum[i].x;
             m_sum[i].y += other.m_sum[i].y;
@@ -420,6 +491,7 @@ private:
     std::vector<std::uint32_t> m_count;
     std::vector<std::uint32_t> m_dropped;
     std::optional<fade_parts> m_fade;
+    std::optional<spectral_parts> m_spectral;
     std::vector<exact_xyz> m_pass;           ///< add_pass's scratch: this pass's sums
     std::vector<unsigned char> m_pass_bad;   ///< add_pass's scratch: a pixel took a bad splat
     std::uint64_t m_pass_splats = 0;         ///< splats added to the current pass

@@ -50,6 +50,7 @@
 #include "iris/render/lights.hpp"
 #include "iris/render/random.hpp"
 #include "iris/render/scene.hpp"
+#include "iris/render/spectral_bands.hpp"
 #include "iris/render/texture.hpp"
 #include "iris/sampling/hwss.hpp"
 #include "iris/spectrum/color.hpp"
@@ -110,9 +111,11 @@ public:
     /// \brief Trace one path from `origin` along unit `dir`. `dist` is the restricted
     /// distribution at this sample's α (its `restriction`, `normalisation` and
     /// `sample_wavelengths<C>`); `alpha < 1` switches the B term on for PropagateUnused.
+    /// With `spectral`, the sample's point contributions are also added to it (the spectral
+    /// film's row, iris/render/spectral_bands.hpp).
     template <Intersector Tracer, class Distribution>
     path_sample trace(const Tracer& tracer, glm::vec3 origin, glm::vec3 dir, const Distribution& dist, float alpha,
-                      sample_stream& rng) const noexcept {
+                      sample_stream& rng, spectral_row* spectral = nullptr) const noexcept {
         path_sample out;
         const sampled_wavelengths<C> wl = dist.template sample_wavelengths<C>(rng.next());
         propagation_type bterm = make_propagation();
@@ -169,8 +172,10 @@ public:
             if (!(wl.pdf(j) > 0.0f) || hp.lc[j] == 0.0f) continue;
             const double w = Config::bias_type::restricted_factor(dist.restriction(wl[j]), wl.pdf(j), z);
             add_cmf(v, w * static_cast<double>(hp.lc[j]), wl[j]);
+            if (spectral) spectral->add(wl[j], w * static_cast<double>(hp.lc[j]));
         }
         bterm.add_xyz(v);
+        if (spectral) bterm.add_spectral(*spectral);
         constexpr double k = 1.0 / cie::y_integral;
         out.value = {v.x * k, v.y * k, v.z * k};
         return out;

@@ -37,6 +37,7 @@
 #include "iris/render/lights/light.hpp"
 #include "iris/render/materials/bxdf.hpp"
 #include "iris/spectrum/color.hpp"
+#include "iris/render/spectral_bands.hpp"
 #include "iris/spectrum/sampled.hpp"
 
 namespace iris {
@@ -63,6 +64,7 @@ struct no_propagation {
     static constexpr float roulette_max(float m) noexcept { return m; }
     void survive(float) noexcept {}
     void add_xyz(xyz&) const noexcept {}
+    void add_spectral(spectral_row&) const noexcept {}
     void start_emitted(const emission_ref&, float) noexcept {}
     template <class B, std::size_t C>
     void follow_adjoint(const B&, const glm::vec3&, const bsdf_sample<C>&, float) noexcept {}
@@ -244,6 +246,15 @@ public:
     void add_xyz(xyz& v) const noexcept {
         if (!m_on) return;
         sum_xyz(m_lb.values().data(), v);
+    }
+
+    /// \brief The bins' point contributions (λ_b, Δλ · L_b) to a spectral row: what
+    /// `add_xyz` weights by cmf(λ_b) (iris/render/spectral_bands.hpp).
+    void add_spectral(spectral_row& row) const noexcept {
+        if (!m_on) return;
+        const double dl = static_cast<double>(m_t->lattice.bin_width());
+        for (std::size_t b = 0; b < Bins; ++b)
+            if (m_lb[b] != 0.0f) row.add(m_t->lattice.lambda(b, m_bp.u), dl * static_cast<double>(m_lb[b]));
     }
 
 protected:

@@ -10,6 +10,8 @@
 #include <ImfStringAttribute.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include <Imath/half.h>
+#include <fmt/core.h>
 #include <cstddef>
 
 namespace iris::exr {
@@ -37,16 +40,58 @@ Imf::FrameBuffer frame_buffer(image& img) {
 
 }  // namespace
 
-void write(const std::filesystem::path& path, const image& img, const metadata& meta, pixel_type type) {
+std::string spectral_channel_name(double nm) {
+    std::string v = fmt::format("{}", nm);  // shortest round trip
+    if (const auto dot = v.find('.'); dot != std::string::npos) v[dot] = ',';
+    return "S0." + v + "nm";
+}
+
+std::optional<double> spectral_channel_wavelength(std::string_view name) {
+    if (!name.starts_with("S0.")) return std::nullopt;
+    std::string_view rest = name.substr(3);
+    if (!rest.ends_with("nm"))
+        throw error(fmt::format("spectral channel '{}' is not in nanometres (iris reads S0.<wavelength>nm)", name));
+    std::string number(rest.substr(0, rest.size() - 2));
+    std::replace(number.begin(), number.end(), ',', '.');
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), v);
+    if (ec != std::errc() || end != number.data() + number.size() || !(v > 0.0) || !std::isfinite(v))
+        throw error(fmt::format("spectral channel '{}' does not name a wavelength (expected e.g. S0.550nm or S0.392,5nm)", name));
+    return v;
+}
+
+void write(const std::filesystem::path& path, const image& img, const metadata& meta, pixel_type type,
+           const spectral_image* spectral) {
     if (img.empty()) throw error("cannot write '" + path.string() + "': the image is empty");
+    if (spectral && spectral->values.size() != img.pixel_count() * spectral->count())
+        throw error("cannot write '" + path.string() + "': the spectral channels do not have one value per pixel and wavelength");
     write_atomically(path, [&](const std::filesystem::path& tmp) {
         try {
             Imf::Header header(img.width(), img.height());
             const Imf::PixelType pt = type == pixel_type::half ? Imf::HALF : Imf::FLOAT;
             for (const char* c : channel_names) header.channels().insert(c, Imf::Channel(pt));
+            std::vector<std::string> spectral_names;
+            if (spectral && spectral->count() > 0) {
+                for (double nm : spectral->wavelengths) {
+                    spectral_names.push_back(spectral_channel_name(nm));
+                    header.channels().insert(spectral_names.back(), Imf::Channel(Imf::FLOAT));
+                }
+                header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
+                header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
+            }
             header.compression() = Imf::ZIP_COMPRESSION;
             for (const auto& [key, value] : meta) header.insert(key, Imf::StringAttribute(value));
             Imf::OutputFile file(tmp.c_str(), header);
+            std::vector<float> spectral_copy;  // Slice wants a mutable base pointer
+            const auto add_spectral = [&](Imf::FrameBuffer& fb) {
+                if (spectral_names.empty()) return;
+                spectral_copy = spectral->values;
+                const std::size_t xs = spectral->count() * sizeof(float);
+                const std::size_t ys = xs * static_cast<std::size_t>(img.width());
+                for (std::size_t b = 0; b < spectral_names.size(); ++b)
+                    fb.insert(spectral_names[b],
+                              Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(spectral_copy.data() + b), xs, ys));
+            };
             // OpenEXR converts pixel types when reading but not when writing: a half file
             // needs a half frame buffer.
             image copy = img;  // Slice wants a mutable base pointer
@@ -64,9 +109,12 @@ void write(const std::filesystem::path& path, const image& img, const metadata& 
                 const std::size_t ys = xs * static_cast<std::size_t>(img.width());
                 for (std::size_t c = 0; c < channel_names.size(); ++c)
                     fb.insert(channel_names[c], Imf::Slice(Imf::HALF, base + c * sizeof(half), xs, ys));
+                add_spectral(fb);
                 file.setFrameBuffer(fb);
             } else {
-                file.setFrameBuffer(frame_buffer(copy));
+                Imf::FrameBuffer fb = frame_buffer(copy);
+                add_spectral(fb);
+                file.setFrameBuffer(fb);
             }
             file.writePixels(img.height());
         } catch (const std::exception& e) {
@@ -122,6 +170,36 @@ loaded read_file(Imf::InputFile& file, const std::string& name, std::int64_t pix
                              reinterpret_cast<char*>(reinterpret_cast<std::uintptr_t>(base) +
                                                      static_cast<std::uintptr_t>(origin + static_cast<std::ptrdiff_t>(c * sizeof(float)))),
                              static_cast<std::size_t>(xs), static_cast<std::size_t>(ys)));
+    // the spectral channels (S0.<λ>nm), sorted by wavelength
+    std::vector<std::pair<double, std::string>> spectral;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+        if (const auto nm = spectral_channel_wavelength(it.name())) spectral.emplace_back(*nm, it.name());
+    std::sort(spectral.begin(), spectral.end());
+    for (std::size_t b = 1; b < spectral.size(); ++b)
+        if (spectral[b].first == spectral[b - 1].first)
+            throw error(fmt::format("EXR '{}' has two spectral channels at {} nm ('{}', '{}')", name, spectral[b].first,
+                                    spectral[b - 1].second, spectral[b].second));
+    // at most 8 float channels' worth of spectral values per pixel of the limit (4 GiB at
+    // max_pixels): a header with many channels cannot make iris allocate more
+    const std::int64_t value_limit = std::min(pixel_limit, max_pixels) * 8;
+    if (!spectral.empty() && static_cast<std::int64_t>(spectral.size()) > value_limit / (w * h))
+        throw error(fmt::format("EXR '{}' has {} spectral channels of {}x{} pixels: more than iris reads ({} values)", name,
+                                spectral.size(), w, h, value_limit));
+    if (!spectral.empty()) {
+        out.spectral.values.resize(static_cast<std::size_t>(w * h) * spectral.size());
+        const std::ptrdiff_t sxs = static_cast<std::ptrdiff_t>(spectral.size() * sizeof(float));
+        const std::ptrdiff_t sys = sxs * static_cast<std::ptrdiff_t>(w);
+        const std::ptrdiff_t sorigin = -static_cast<std::ptrdiff_t>(dw.min.x) * sxs - static_cast<std::ptrdiff_t>(dw.min.y) * sys;
+        auto* sbase = reinterpret_cast<char*>(out.spectral.values.data());
+        for (std::size_t b = 0; b < spectral.size(); ++b) {
+            out.spectral.wavelengths.push_back(spectral[b].first);
+            fb.insert(spectral[b].second,
+                      Imf::Slice(Imf::FLOAT,
+                                 reinterpret_cast<char*>(reinterpret_cast<std::uintptr_t>(sbase) +
+                                                         static_cast<std::uintptr_t>(sorigin + static_cast<std::ptrdiff_t>(b * sizeof(float)))),
+                                 static_cast<std::size_t>(sxs), static_cast<std::size_t>(sys)));
+        }
+    }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     for (auto it = file.header().begin(); it != file.header().end(); ++it)

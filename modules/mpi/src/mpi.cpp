@@ -36,6 +36,11 @@ extern "C" void add_exact(void* in, void* inout, int* len, MPI_Datatype*) {
         b[i].z += a[i].z;
     }
 }
+extern "C" void add_exact_one(void* in, void* inout, int* len, MPI_Datatype*) {  // the spectral layer's sums
+    const auto* a = static_cast<const exact_int*>(in);
+    auto* b = static_cast<exact_int*>(inout);
+    for (int i = 0; i < *len; ++i) b[i] += a[i];
+}
 using square_xyz = std::array<fade::square_sum, 3>;
 extern "C" void add_squares(void* in, void* inout, int* len, MPI_Datatype*) {
     const auto* a = static_cast<const square_xyz*>(in);
@@ -122,9 +127,19 @@ film session::reduce(const film& local) const {
         reduce_to_root(span_sq(l->early_sq), fade->early_sq, root, squares_op.type, squares_op.op, "MPI_Reduce (fade: squares)");
         reduce_to_root(span_sq(l->late_sq), fade->late_sq, root, squares_op.type, squares_op.op, "MPI_Reduce (fade: squares)");
     }
+    std::optional<film::spectral_parts> spectral;
+    if (const film::spectral_parts* l = local.spectral_state()) {  // every rank renders with the same options
+        const exact_op band_op(sizeof(exact_int), &add_exact_one);
+        spectral.emplace();
+        spectral->bands = l->bands;
+        reduce_to_root(std::span<const exact_int>(l->sums), spectral->sums, root, band_op.type, band_op.op,
+                       "MPI_Reduce (spectral sums)");
+        check(MPI_Reduce(&l->dropped, &spectral->dropped, 1, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD),
+              "MPI_Reduce (spectral dropped)");
+    }
     if (!root) return film(0, 0);
     return film::from_parts(local.width(), local.height(), std::move(sums), std::move(counts), std::move(dropped),
-                            std::move(fade));
+                            std::move(fade), std::move(spectral));
 }
 
 int session::max(int value) const {

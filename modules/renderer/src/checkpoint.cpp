@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -19,6 +20,7 @@
 
 #include "iris/exr/exr.hpp"
 #include "iris/hash.hpp"
+#include "iris/renderer/renderer.hpp"
 
 namespace iris::renderer {
 namespace {
@@ -31,7 +33,7 @@ constexpr std::size_t square_bytes = sizeof(fade::exact_uint) + sizeof(std::uint
 constexpr std::size_t fade_file_bytes = sizeof(exact_xyz) + sizeof(std::uint32_t) + 6 * square_bytes;
 
 constexpr char magic[8] = {'I', 'R', 'I', 'S', 'C', 'K', 'P', 'T'};
-constexpr std::uint32_t format_version = 2;  // 1: no fade layer, no fade_split (still read)
+constexpr std::uint32_t format_version = 3;  // 1: no fade layer, no fade_split; 2: no spectral layer (both still read)
 constexpr int max_side = 16384;
 
 /// \brief The key's fields as (name, value) in a fixed order: the header and the mismatch
@@ -48,7 +50,8 @@ std::vector<std::pair<std::string, std::string>> fields(const checkpoint_key& k)
             {"max_depth", std::to_string(k.max_depth)},
             {"spp", std::to_string(k.spp)},
             {"width", std::to_string(k.width)},
-            {"height", std::to_string(k.height)}};
+            {"height", std::to_string(k.height)},
+            {"spectral_bins", std::to_string(k.spectral_bins)}};
 }
 
 template <class T>
@@ -115,6 +118,13 @@ void write_checkpoint(const std::filesystem::path& path, const checkpoint& c) {
     const film::fade_parts* fade = f.fade_state();
     header += fmt::format("spp_done={}\nsamples={}\nrays={}\nseconds={}\nfade_split={}\n", c.spp_done, c.samples, c.rays,
                           c.seconds, fade ? fade->split : 0);
+    const film::spectral_parts* spectral = f.spectral_state();
+    if ((spectral ? spectral->bands.count : 0) != c.key.spectral_bins)
+        throw checkpoint_error(fmt::format("cannot write checkpoint '{}': its key has {} spectral bins, its film {}", path.string(),
+                                           c.key.spectral_bins, spectral ? spectral->bands.count : 0));
+    if (spectral)
+        header += fmt::format("spectral_range={},{}\nspectral_dropped={}\n", spectral->bands.lambda_min,
+                              spectral->bands.lambda_max, spectral->dropped);
     std::string out;
     const std::size_t pixels = f.sums().size();
     out.reserve(24 + header.size() + pixels * (film::bytes_per_pixel + (fade ? fade_file_bytes : 0)) + 8);
@@ -135,6 +145,7 @@ void write_checkpoint(const std::filesystem::path& path, const checkpoint& c) {
                     put(out, q.high);
                 }
     }
+    if (spectral) put_all(out, std::span<const exact_int>(spectral->sums));
     put(out, fnv1a_of(out.data(), out.size()));
     try {
         exr::write_atomically(path, [&](const std::filesystem::path& tmp) {
@@ -166,8 +177,8 @@ checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
 
     if (r.take(sizeof magic, "the magic") != std::string_view(magic, sizeof magic)) r.fail("it does not start with IRISCKPT");
     const auto version = r.get<std::uint32_t>("the format version");
-    if (version != 1 && version != format_version)
-        r.fail(fmt::format("format version {}, this iris reads 1 and {}", version, format_version));
+    if (version < 1 || version > format_version)
+        r.fail(fmt::format("format version {}, this iris reads 1 to {}", version, format_version));
     const auto header_length = r.get<std::uint32_t>("the header length");
     if (header_length > (1u << 16)) r.fail(fmt::format("a header of {} bytes", header_length));
     std::map<std::string, std::string> h;
@@ -211,9 +222,28 @@ checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
     c.rays = parse_number<std::uint64_t>(r, h, "rays", 0, UINT64_MAX);
     c.seconds = parse_number<double>(r, h, "seconds", 0.0, 1e12);
     const auto fade_split = version == 1 ? 0u : parse_number<std::uint32_t>(r, h, "fade_split", 0, UINT32_MAX);
+    c.key.spectral_bins = version < 3 ? 0 : parse_number<int>(r, h, "spectral_bins", 0, max_spectral_bins);
+    std::optional<film::spectral_parts> spectral;
+    if (c.key.spectral_bins > 0) {
+        spectral.emplace();
+        spectral->bands.count = c.key.spectral_bins;
+        const std::string range = text("spectral_range");
+        const auto comma = range.find(',');
+        const auto number = [&](std::string_view t, double& v) {
+            const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+            return ec == std::errc() && end == t.data() + t.size() && std::isfinite(v);
+        };
+        if (comma == std::string::npos ||
+            !number(std::string_view(range).substr(0, comma), spectral->bands.lambda_min) ||
+            !number(std::string_view(range).substr(comma + 1), spectral->bands.lambda_max) ||
+            !(spectral->bands.lambda_max > spectral->bands.lambda_min))
+            r.fail(fmt::format("header field spectral_range='{}' is not two increasing wavelengths 'min,max'", range));
+        spectral->dropped = parse_number<std::uint64_t>(r, h, "spectral_dropped", 0, UINT64_MAX);
+    }
 
     const std::size_t pixels = static_cast<std::size_t>(c.key.width) * static_cast<std::size_t>(c.key.height);
-    const std::size_t per_pixel = film::bytes_per_pixel + (fade_split > 0 ? fade_file_bytes : 0);
+    const std::size_t per_pixel = film::bytes_per_pixel + (fade_split > 0 ? fade_file_bytes : 0) +
+                                  film::spectral_bytes_per_band * static_cast<std::size_t>(c.key.spectral_bins);
     const std::size_t expected = r.position() + pixels * per_pixel + 8;
     if (bytes.size() != expected)
         r.fail(fmt::format("{} bytes, a {}x{} checkpoint has {}", bytes.size(), c.key.width, c.key.height, expected));
@@ -235,6 +265,7 @@ checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
                 }
         }
     }
+    if (spectral) spectral->sums = r.get_all<exact_int>(pixels * static_cast<std::size_t>(c.key.spectral_bins), "the spectral layer");
     const std::size_t body = r.position();
     if (r.get<std::uint64_t>("the checksum") != fnv1a_of(bytes.data(), body)) r.fail("checksum mismatch");
     for (std::size_t i = 0; i < pixels; ++i) {
@@ -247,7 +278,7 @@ checkpoint parse_checkpoint(std::string_view bytes, const std::string& name) {
                                fade->early_count[i], std::min(counts[i], fade_split), c.spp_done, fade_split));
     }
     c.image = film::from_parts(c.key.width, c.key.height, std::move(sums), std::move(counts), std::move(dropped),
-                               std::move(fade));
+                               std::move(fade), std::move(spectral));
     return c;
 }
 

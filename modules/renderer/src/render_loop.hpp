@@ -5,6 +5,7 @@
 #include <bit>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -36,14 +37,22 @@ template <class Integrator, class Tracer, class Distribution>
 inline std::uint64_t tile_body(const Integrator& integ, const Tracer& tracer, const camera_rays& cam,
                                const tile_job& job, const Distribution& dist, float alpha, film& f) {
     std::uint64_t rays = 0;
+    // the spectral film's row (film.hpp): one per tile call, filled by each sample and
+    // cleared by the film as it sums it
+    const film::spectral_parts* spectral = f.spectral_state();
+    std::vector<double> values(spectral ? static_cast<std::size_t>(spectral->bands.count) : 0, 0.0);
+    std::optional<spectral_row> row;
+    if (spectral) row.emplace(spectral->bands, values.data());
     for (int y = job.y0; y < job.y1; ++y)
         for (int x = job.x0; x < job.x1; ++x) {
             const auto pixel = static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(job.width) +
                                static_cast<std::uint64_t>(x);
             sample_stream rng(job.sampler, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), pixel, job.sample);
             const glm::vec3 d = cam.direction(x, y, rng.next2());
-            const path_sample s = integ.trace(tracer, cam.origin(), d, dist, alpha, rng);
-            f.add(static_cast<std::size_t>(pixel), s.value, job.sample);
+            // one call for both (the integrator is inlined here once: its spectral steps are branches)
+            const path_sample s = integ.trace(tracer, cam.origin(), d, dist, alpha, rng, row ? &*row : nullptr);
+            if (row) f.add(static_cast<std::size_t>(pixel), s.value, job.sample, values.data());
+            else f.add(static_cast<std::size_t>(pixel), s.value, job.sample);
             rays += s.rays;
         }
     return rays;

@@ -119,6 +119,13 @@ void validate(const options& o) {
     if (o.planned_spp < 0 || (o.planned_spp > 0 && o.planned_spp < o.spp))
         throw std::invalid_argument(fmt::format("planned spp must be 0 (spp) or at least spp ({}), got {}: the sampler's "
                                                 "sequence is laid out for it", o.spp, o.planned_spp));
+    if (o.spectral_bins < 0 || o.spectral_bins > max_spectral_bins)
+        throw std::invalid_argument(fmt::format("spectral bins must be 0 (no spectral output) or 1..{}, got {}",
+                                                max_spectral_bins, o.spectral_bins));
+    if (o.spectral_bins > 0 && (o.estimator == "bdpt" || o.estimator == "light"))
+        throw std::invalid_argument(fmt::format("spectral output is written by the nee-mis and bsdf-only estimators; the {} "
+                                                "estimator splats onto other pixels, which the spectral film does not take",
+                                                o.estimator));
     if (o.ranks < 1 || o.rank < 0 || o.rank >= o.ranks)
         throw std::invalid_argument(fmt::format("rank {} of {} ranks is not in 0..ranks-1", o.rank, o.ranks));
 }
@@ -163,7 +170,8 @@ std::map<std::string, std::string> image_metadata(const std::string& scene_name,
                                          {"iris:nthold", std::to_string(opt.nthold)},
                                          {"iris:nan_inf", std::to_string(st.nan_inf)},
                                          {"iris:version", std::string(iris::version)}};
-    if (!st.windows.empty()) m["iris:windows"] = st.windows;  // centre:width (nm) of each restriction window
+    if (!st.windows.empty()) m["iris:windows"] = st.windows;
+    if (opt.spectral_bins > 0) m["iris:spectral_bins"] = std::to_string(opt.spectral_bins);  // centre:width (nm) of each restriction window
     return m;
 }
 
@@ -182,6 +190,7 @@ status render(const prepared_scene& prepared, const options& opt, film& out, con
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
     if (opt.start_spp > 0 && (out.width() != w || out.height() != ht))
         throw std::invalid_argument(fmt::format("the film to resume is {}x{}, the render {}x{}", out.width(), out.height(), w, ht));
+    const spectral_bands bands{opt.spectral_bins, scene.lambda_min, scene.lambda_max};
     const bool fades = opt.estimator != "bsdf-only" &&
                        dispatch_preset(opt.preset, []<class P>() { return P::accumulation_type::fades; });
     if (opt.start_spp > 0) {
@@ -196,12 +205,19 @@ status render(const prepared_scene& prepared, const options& opt, film& out, con
         if (fades && out.fade_state()->split != static_cast<std::uint32_t>(opt.nthold))
             throw std::invalid_argument(fmt::format("the film to resume fades at sample {}, the render's nthold is {}",
                                                     out.fade_state()->split, opt.nthold));
+        if (opt.spectral_bins > 0 && !out.spectral_state() && empty) out.enable_spectral(bands);
+        const int has = out.spectral_state() ? out.spectral_state()->bands.count : 0;
+        if (has != opt.spectral_bins || (has > 0 && !(out.spectral_state()->bands == bands)))
+            throw std::invalid_argument(fmt::format("the film to resume has {} spectral bands, the render asks for {}{}", has,
+                                                    opt.spectral_bins, has == opt.spectral_bins ? " over another range" : ""));
     }
     if (opt.start_spp == 0) try {
         out = film(w, ht);
         if (fades) out.enable_fade(static_cast<std::uint32_t>(opt.nthold));
+        if (opt.spectral_bins > 0) out.enable_spectral(bands);
     } catch (const std::bad_alloc&) {
-        const std::size_t per_pixel = film::bytes_per_pixel + (fades ? film::fade_bytes_per_pixel : 0);
+        const std::size_t per_pixel = film::bytes_per_pixel + (fades ? film::fade_bytes_per_pixel : 0) +
+                                      film::spectral_bytes_per_band * static_cast<std::size_t>(opt.spectral_bins);
         const double bytes = static_cast<double>(w) * static_cast<double>(ht) * static_cast<double>(per_pixel);
         throw std::runtime_error(fmt::format("not enough memory for a {}x{} film ({:.2f} GiB at {} bytes per pixel)", w, ht,
                                              bytes / (1024.0 * 1024.0 * 1024.0), per_pixel));

@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "iris/image.hpp"
 
@@ -29,14 +31,33 @@ using metadata = std::map<std::string, std::string>;
 
 enum class pixel_type { half, float32 };
 
-/// \brief Write linear RGB as an EXR (channels R, G, B), atomically.
-void write(const std::filesystem::path& path, const image& img, const metadata& meta = {},
-           pixel_type type = pixel_type::float32);
+/// \brief Spectral channels beside RGB, in the layout of Fichet, Pacanowski and Wilkie, "An
+/// OpenEXR Layout for Spectral Images" (JCGT 10(3), 2021): an emissive, unpolarised spectrum
+/// as one float channel per wavelength named `S0.<λ>nm` (decimal comma: `S0.392,5nm`), with
+/// the string attributes `spectralLayoutVersion` = "1.0" and `emissiveUnits` = "W.m^-2.sr^-1".
+struct spectral_image {
+    std::vector<double> wavelengths;  ///< nm, increasing; empty: no spectral channels
+    std::vector<float> values;        ///< pixel-major: pixel i's value at wavelength b is values[i · count + b]
+    std::size_t count() const noexcept { return wavelengths.size(); }
+};
 
-/// \brief An EXR's RGB channels (as float) and its string attributes.
+/// \brief `S0.<λ>nm` for λ in nm: the shortest decimal that reads back as λ, with a comma.
+std::string spectral_channel_name(double nm);
+/// \brief λ in nm of a channel named `S0.<λ>nm` (comma or point); nullopt for another name.
+/// \throws error for an `S0.` channel in other units (the layout allows m, Hz, … — iris reads nm).
+std::optional<double> spectral_channel_wavelength(std::string_view name);
+
+/// \brief Write linear RGB as an EXR (channels R, G, B), atomically; with `spectral`, its
+/// channels too (float32, whatever `type` is), in the spectral layout above.
+void write(const std::filesystem::path& path, const image& img, const metadata& meta = {},
+           pixel_type type = pixel_type::float32, const spectral_image* spectral = nullptr);
+
+/// \brief An EXR's RGB channels (as float), its string attributes and its spectral channels
+/// (`S0.<λ>nm`, sorted by λ; empty if it has none).
 struct loaded {
     iris::image pixels;
     metadata meta;
+    spectral_image spectral;
 };
 
 /// \brief The largest images `read` accepts: a side of at most 65 536 pixels and at most

@@ -4,7 +4,7 @@
 /// render it belongs to, so that `render` can go on from it (options::start_spp) to the
 /// same film an uninterrupted render gives.
 ///
-/// **File format** (version 2; host byte order, little-endian on every machine iris builds
+/// **File format** (version 3; host byte order, little-endian on every machine iris builds
 /// for, and checked by the magic):
 ///
 /// | bytes | what |
@@ -12,7 +12,7 @@
 /// | 8 | magic `IRISCKPT` |
 /// | 4 | format version (uint32, 2) |
 /// | 4 | header length L (uint32) |
-/// | L | header: `key=value` lines (the key's fields, then spp_done, samples, rays, seconds, fade_split) |
+/// | L | header: `key=value` lines (the key's fields, then spp_done, samples, rays, seconds, fade_split, and with spectral_bins > 0 spectral_range=λmin,λmax and spectral_dropped) |
 /// | 48·P | per pixel (P = width·height, row-major): X, Y, Z sums as 128-bit fixed point (film.hpp) |
 /// | 4·P | per pixel: samples (uint32) |
 /// | 4·P | per pixel: dropped samples (uint32) |
@@ -20,10 +20,12 @@
 /// | 48·P | per pixel: the early samples' X, Y, Z sums |
 /// | 4·P | per pixel: early samples (uint32) |
 /// | 144·P | per pixel, early then late side, X, Y, Z: sums of squares (fade.hpp), 16 bytes low part then 8 bytes high |
+/// | | only if spectral_bins = B > 0 (the film's spectral layer, film.hpp): |
+/// | 16·B·P | per pixel, per band: the exact sums |
 /// | 8 | FNV-1a (64 bit) of every byte before it |
 ///
-/// Version 1 (written before the fade layer) is the same without fade_split and is still
-/// read. A reader checks everything it can: the magic and version, every header field, the
+/// Version 1 (written before the fade layer) is the same without fade_split, version 2
+/// without spectral_bins; both are still read. A reader checks everything it can: the magic and version, every header field, the
 /// exact length, the checksum, that every pixel holds spp_done samples and, with a fade
 /// layer, min(spp_done, fade_split) early ones. It is written
 /// atomically (a temporary file, then rename), so a crash at any moment leaves either the
@@ -50,6 +52,7 @@ struct checkpoint_key {
     int nthold = 0, max_depth = 0;
     int spp = 0;                         ///< the render's target (zsobol's points depend on it)
     int width = 0, height = 0;
+    int spectral_bins = 0;               ///< the film's spectral bands (0: none)
     friend bool operator==(const checkpoint_key&, const checkpoint_key&) = default;
 };
 

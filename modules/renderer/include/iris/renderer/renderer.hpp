@@ -76,7 +76,17 @@ struct options {
     /// runs after every round on every rank, even a rank without a pass in the last one.
     int rank = 0;
     int ranks = 1;
+    /// \brief Spectral output: 0 (none), or the film's spectral layer with this many equal
+    /// bands over the scene's spectral domain (film.hpp, iris/render/spectral_bands.hpp;
+    /// 1..max_spectral_bins). The nee-mis and bsdf-only estimators only: bdpt and light
+    /// splat onto other pixels, which a spectral layer does not take. Costs
+    /// film::spectral_bytes_per_band (16) bytes per band per pixel; the XYZ film is the same
+    /// bit for bit with or without it.
+    int spectral_bins = 0;
 };
+
+/// \brief The most bands `options::spectral_bins` accepts (0.4 nm on 380–780 nm).
+inline constexpr int max_spectral_bins = 1000;
 
 /// \brief Where a render is: passed to the hooks and returned at the end.
 struct status {
