@@ -42,6 +42,11 @@ done
 "${mpi[@]}" -np 2 "$render" "${args[@]/paper/paper-fade}" --threads 1 --spp 40 -o fade-ranks2.exr >out.txt 2>err.txt ||
   fail "mpirun -np 2 paper-fade failed"
 cmp -s fade-ranks2.exr fade-single.exr || fail "the 2-rank paper-fade image differs from the single-process image"
+# spectral output: the ranks' spectral layers are summed too (or the S0.<λ>nm channels would differ)
+"$render" "${args[@]}" --spp 12 --spectral 8 -o spectral-single.exr >out.txt 2>err.txt || fail "single-process --spectral failed"
+"${mpi[@]}" -np 2 "$render" "${args[@]}" --threads 1 --spp 12 --spectral 8 -o spectral-ranks2.exr >out.txt 2>err.txt ||
+  fail "mpirun -np 2 --spectral failed"
+cmp -s spectral-ranks2.exr spectral-single.exr || fail "the 2-rank spectral image differs from the single-process image"
 
 # ---- 2. a dead rank
 "$render" "${args[@]}" --spp 1500 --threads 2 -o full.exr >out.txt 2>err.txt || fail "the uninterrupted render failed"
