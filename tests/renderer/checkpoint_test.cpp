@@ -134,6 +134,27 @@ protected:
         return b;
     }
     void rewrite(const std::string& b) const { std::ofstream(path, std::ios::binary) << b; }
+    /// \brief `b` with its checksum (FNV-1a of everything before it) made right again.
+    static void fix_checksum(std::string& b) {
+        std::uint64_t h = 0xcbf29ce484222325ull;
+        for (std::size_t i = 0; i + 8 < b.size(); ++i) h = (h ^ static_cast<unsigned char>(b[i])) * 0x100000001b3ull;
+        std::memcpy(b.data() + b.size() - 8, &h, 8);
+    }
+    /// \brief Rewrite the file as an older format `version` would have it: without the
+    /// header line `field` (the header length and the checksum made right).
+    void rewrite_as_version(std::uint8_t version, const std::string& field) const {
+        std::string b = bytes();
+        const auto at = b.find(field);
+        ASSERT_NE(at, std::string::npos);
+        b.erase(at, field.size());
+        b[8] = static_cast<char>(version);
+        std::uint32_t length = 0;
+        std::memcpy(&length, b.data() + 12, 4);
+        length -= static_cast<std::uint32_t>(field.size());
+        std::memcpy(b.data() + 12, &length, 4);
+        fix_checksum(b);
+        rewrite(b);
+    }
     /// \brief read_checkpoint must throw checkpoint_error whose message contains `what`.
     void expect_refused(const std::string& what) const {
         try {
@@ -209,20 +230,7 @@ TEST_F(CheckpointFile, AFilmThatDoesNotHoldSppDoneSamplesIsRefused) {
 // Format version 1 (before the fade layer: no fade_split) is still read, to the same film.
 // Would catch a reader that demands fade_split of every file.
 TEST_F(CheckpointFile, VersionOneIsStillRead) {
-    std::string b = bytes();
-    const std::string field = "fade_split=0\n";
-    const auto at = b.find(field);
-    ASSERT_NE(at, std::string::npos);
-    b.erase(at, field.size());
-    b[8] = 1;
-    std::uint32_t length = 0;
-    std::memcpy(&length, b.data() + 12, 4);
-    length -= static_cast<std::uint32_t>(field.size());
-    std::memcpy(b.data() + 12, &length, 4);
-    std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a of everything before the checksum
-    for (std::size_t i = 0; i + 8 < b.size(); ++i) h = (h ^ static_cast<unsigned char>(b[i])) * 0x100000001b3ull;
-    std::memcpy(b.data() + b.size() - 8, &h, 8);
-    rewrite(b);
+    rewrite_as_version(1, "fade_split=0\n");
     const checkpoint r = iris::renderer::read_checkpoint(path);
     EXPECT_FALSE(r.image.fades());
     expect_identical(r.image, c.image);
@@ -268,20 +276,7 @@ TEST_F(CheckpointFile, AFadingFilmKeepsItsFadeLayer) {
 // Format version 2 (before the spectral layer: no spectral_bins) is still read, to the same
 // film without a layer. Would catch a reader that demands spectral_bins of every file.
 TEST_F(CheckpointFile, VersionTwoIsStillRead) {
-    std::string b = bytes();
-    const std::string field = "spectral_bins=0\n";
-    const auto at = b.find(field);
-    ASSERT_NE(at, std::string::npos);
-    b.erase(at, field.size());
-    b[8] = 2;
-    std::uint32_t length = 0;
-    std::memcpy(&length, b.data() + 12, 4);
-    length -= static_cast<std::uint32_t>(field.size());
-    std::memcpy(b.data() + 12, &length, 4);
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    for (std::size_t i = 0; i + 8 < b.size(); ++i) h = (h ^ static_cast<unsigned char>(b[i])) * 0x100000001b3ull;
-    std::memcpy(b.data() + b.size() - 8, &h, 8);
-    rewrite(b);
+    rewrite_as_version(2, "spectral_bins=0\n");
     const checkpoint r = iris::renderer::read_checkpoint(path);
     EXPECT_EQ(r.image.spectral_state(), nullptr);
     EXPECT_EQ(r.key.spectral_bins, 0);
@@ -313,9 +308,7 @@ TEST_F(CheckpointFile, ASpectralFilmKeepsItsSpectralLayer) {
     const auto at = bad.find("spectral_range=");
     ASSERT_NE(at, std::string::npos);
     bad[at + 15] = 'x';
-    std::uint64_t h = 0xcbf29ce484222325ull;  // a consistent file: the field itself is checked
-    for (std::size_t i = 0; i + 8 < bad.size(); ++i) h = (h ^ static_cast<unsigned char>(bad[i])) * 0x100000001b3ull;
-    std::memcpy(bad.data() + bad.size() - 8, &h, 8);
+    fix_checksum(bad);  // a consistent file: the field itself is checked
     rewrite(bad);
     expect_refused("is not two increasing wavelengths");
 }
