@@ -114,7 +114,7 @@ protected:
         fs::remove_all(dir);
         fs::create_directories(dir);
         path = dir / "x.exr.ckpt";
-        c.key = {"0.1.0", "prism", 0x0123456789abcdefull, "paper", "nee-mis", "zsobol", 7, 4, 32, 9, 24, 16};
+        c.key = {"0.1.0", "prism", 0x0123456789abcdefull, "paper", "nee-mis", "zsobol", 7, 4, 32, 9, 24, 16, 0};
         auto o = small("zsobol");
         o.seed = 7;
         iris::renderer::hooks stop;
@@ -315,7 +315,7 @@ TEST_F(CheckpointFile, ASpectralFilmKeepsItsSpectralLayer) {
 
 // key_mismatch names the first field that differs, with both values.
 TEST(CheckpointKey, AMismatchNamesTheField) {
-    const iris::renderer::checkpoint_key a{"0.1.0", "prism", 1, "paper", "nee-mis", "sobol", 7, 4, 32, 9, 24, 16};
+    const iris::renderer::checkpoint_key a{"0.1.0", "prism", 1, "paper", "nee-mis", "sobol", 7, 4, 32, 9, 24, 16, 0};
     EXPECT_FALSE(iris::renderer::key_mismatch(a, a));
     auto b = a;
     b.seed = 8;

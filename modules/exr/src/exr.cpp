@@ -156,7 +156,7 @@ loaded read_file(Imf::InputFile& file, const std::string& name, std::int64_t pix
     for (const char* c : channel_names)
         if (file.header().channels().findChannel(c) == nullptr)
             throw error("EXR '" + name + "' has no channel '" + c + "' (iris reads R, G, B)");
-    loaded out{image(static_cast<int>(w), static_cast<int>(h)), {}};
+    loaded out{image(static_cast<int>(w), static_cast<int>(h)), {}, {}};
     Imf::FrameBuffer fb;
     auto* base = reinterpret_cast<char*>(out.pixels.pixels().data());
     const std::ptrdiff_t xs = sizeof(rgb_pixel);
