@@ -74,7 +74,10 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
             if (!d.texture) return "diffuse";
             const auto& t = s.textures[*d.texture];
             const char* wrap = t.wrap == iris::texture_wrap::repeat ? "repeat" : t.wrap == iris::texture_wrap::clamp ? "clamp" : "mirror";
-            return fmt::format("diffuse texture={} {}x{} wrap={}", t.file, t.width, t.height, wrap);
+            std::string mapped;
+            if (t.uv_scale != glm::vec2(1.0f) || t.uv_offset != glm::vec2(0.0f))
+                mapped = fmt::format(" uv_scale={},{} uv_offset={},{}", t.uv_scale.x, t.uv_scale.y, t.uv_offset.x, t.uv_offset.y);
+            return fmt::format("diffuse texture={} {}x{} wrap={}{}", t.file, t.width, t.height, wrap, mapped);
         }
         std::string operator()(const iris::material::conductor& c) const {
             const std::string rough = c.roughness > 0.0f ? fmt::format(" roughness={:g}", c.roughness) : std::string(" smooth");
@@ -123,8 +126,9 @@ std::string light_summary(const iris::light_desc& l) {
 std::string environment_summary(const iris::scene_desc& s) {
     if (!s.environment) return "none";
     if (const auto& m = s.environment->map)
-        return fmt::format("image {} {}x{} {}", m->file, m->width, m->height,
-                           m->mapping == iris::environment_mapping::latlong ? "latlong" : "equal-area");
+        return fmt::format("image {} {}x{} {}{}", m->file, m->width, m->height,
+                           m->mapping == iris::environment_mapping::latlong ? "latlong" : "equal-area",
+                           m->to_map != glm::mat3(1.0f) ? " turned" : "");
     return s.environment->spd_name;
 }
 

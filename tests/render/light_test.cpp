@@ -238,6 +238,65 @@ TEST(LightSampling, EnvironmentDensityAndFluxIntegrate) {
     }
 }
 
+// An environment turned by `to_map` (a pbrt-v4 infinite light under a transform) is the same
+// map seen through the rotation: its radiance and density at d are the unturned map's at
+// to_map·d, and its samples are the unturned ones turned back (a mirror included).
+TEST(LightSampling, ATurnedEnvironmentIsTheSameMapSeenThroughItsRotation) {
+    for (const auto mapping : {iris::environment_mapping::latlong, iris::environment_mapping::equal_area}) {
+        const int w = 16, h = mapping == iris::environment_mapping::latlong ? 8 : 16;
+        const auto texel = [](int x, int y) { return glm::vec3(0.1f + static_cast<float>((x * 3 + y) % 5), (x == 3 && y == 2) ? 30.0f : 0.2f, 0.3f); };
+        const auto plain = map_scene(mapping, w, h, texel);
+        auto turned = map_scene(mapping, w, h, texel);
+        // a rotation about (1, 2, 3) by 50° followed by a mirror in x: orthogonal, det −1
+        const glm::vec3 k = glm::normalize(glm::vec3(1.0f, 2.0f, 3.0f));
+        const float c = std::cos(0.87266f), sn = std::sin(0.87266f);
+        glm::mat3 r;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const float kk = k[i] * k[j] * (1.0f - c);
+                const float cross = (i == j) ? 0.0f : sn * ((i + 1) % 3 == j ? -k[3 - i - j] : k[3 - i - j]);
+                r[j][i] = (i == j ? c : 0.0f) + kk + cross;
+            }
+        r = glm::mat3(glm::vec3(-1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f)) * r;
+        turned.environment->map->to_map = r;
+        const iris::lights::environment_light a(*plain.environment, 0), b(*turned.environment, 0);
+        iris::counter_rng rng(17, 0);
+        int edges = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const glm::vec3 d = iris::lights::uniform_sphere({rng.next(), rng.next()});
+            const glm::vec3 m = r * d;
+            EXPECT_NEAR(b.pdf(d), a.pdf(m), 1e-4f * a.pdf(m) + 1e-7f);
+            const auto eb = b.emission(d), ea = a.emission(m);
+            for (int j = 0; j < 3; ++j) EXPECT_NEAR(eb.weight[j], ea.weight[j], 1e-4f * (1.0f + ea.weight[j]));
+            const glm::vec2 u{rng.next(), rng.next()};
+            const auto sb = b.sample(u), sa = a.sample(u);
+            ASSERT_EQ(sb.has_value(), sa.has_value());
+            if (!sa) continue;
+            EXPECT_LT(glm::length(r * sb->dir - sa->dir), 1e-5f);
+            EXPECT_NEAR(sb->pdf, sa->pdf, 1e-6f * sa->pdf);
+            // sample() reports pdf(), except where turning the direction back and forth moves it
+            // across a texel's edge by a rounding (the density is piecewise constant there), or,
+            // for the latitude-longitude map, within 0.01 rad of a pole, where θ = acos(y) loses
+            // precision (a rounding of y near 1 moves θ, and the 1/sin θ of the density, by up to a few %)
+            if (std::fabs(b.pdf(sb->dir) - sb->pdf) > 2e-3f * sb->pdf) {
+                const glm::vec3 m2 = r * sb->dir;
+                const bool ll = mapping == iris::environment_mapping::latlong;
+                const glm::vec2 p = ll ? iris::lights::direction_to_latlong(m2) : iris::lights::direction_to_equal_area(m2);
+                const float ex = p.x * static_cast<float>(w), ey = p.y * static_cast<float>(h);
+                const bool edge = std::min(std::fabs(ex - std::round(ex)), std::fabs(ey - std::round(ey))) < 1e-3f;
+                const bool pole = ll && std::fabs(m2.y) > std::cos(0.01f);
+                EXPECT_TRUE(edge || pole) << "a sample's pdf differs from pdf(dir) away from a texel edge and a pole: p " << p.x
+                                          << "," << p.y;
+                ++edges;
+            }
+        }
+        EXPECT_LE(edges, 20) << "more than 1 % of the samples on a texel edge or at a pole";
+        // flux does not turn
+        const glm::dvec3 fa = a.integral(), fb = b.integral();
+        EXPECT_EQ(fa, fb);
+    }
+}
+
 // Selection by power: a triangle lamp, a point light and a distant light, each chosen in
 // proportion to Φ/π (A∫L, 4∫I, R²∫E), and every sample's pdf is its light's probability
 // (delta lights) or p·r²/|cos| (the triangle).

@@ -98,3 +98,21 @@ TEST(EnvironmentImage, OutOfGamutTexelsAreClampedAndReported) {
     write_map(dir.path / "sky.exr", 8, 4, [](int, int) { return iris::rgb_pixel{1.0f, 1.0f, 1.0f}; });
     EXPECT_TRUE(iris::scene::approximations(iris::scene::parse_scene(scene_with(R"({"image": "sky.exr"})"), "env.json", dir.path)).empty());
 }
+
+// "rotation" turns the map: the rows of the matrix taking the map's directions to the
+// world's, stored as its inverse (world → map); one that is not orthogonal is an error.
+TEST(EnvironmentImage, ARotationTurnsTheMap) {
+    temp_dir dir;
+    write_map(dir.path / "sky.exr", 8, 4, [](int x, int) { return iris::rgb_pixel{static_cast<float>(x), 1.0f, 1.0f}; });
+    // the map's +y (up) to the world's +x, its +x to the world's −y
+    const auto s = iris::scene::parse_scene(scene_with(R"({"image": "sky.exr", "rotation": [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]})"), "env.json", dir.path);
+    const glm::mat3& m = s.environment->map->to_map;
+    EXPECT_LT(glm::length(m * glm::vec3(1, 0, 0) - glm::vec3(0, 1, 0)), 1e-6f);
+    EXPECT_LT(glm::length(m * glm::vec3(0, -1, 0) - glm::vec3(1, 0, 0)), 1e-6f);
+    const auto plain = iris::scene::parse_scene(scene_with(R"({"image": "sky.exr"})"), "env.json", dir.path);
+    EXPECT_EQ(plain.environment->map->to_map, glm::mat3(1.0f));
+    EXPECT_NE(iris::scene::fingerprint(s), iris::scene::fingerprint(plain));
+    const std::string e = error_of(R"({"image": "sky.exr", "rotation": [[1, 0, 0], [0, 2, 0], [0, 0, 1]]})", dir.path);
+    EXPECT_NE(e.find("env.json:3: environment/rotation: the rotation must be orthogonal"), std::string::npos) << e;
+    EXPECT_NE(error_of(R"({"image": "sky.exr", "rotation": [[1, 0, 0], [0, 1, 0]]})", dir.path).find("three rows"), std::string::npos);
+}

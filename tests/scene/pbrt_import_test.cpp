@@ -11,13 +11,18 @@
 #include <numbers>
 #include <string>
 
+#include <unistd.h>
+
 #include <glm/geometric.hpp>
 #include <zlib.h>
 
+#include <iris/exr/exr.hpp>
 #include <iris/render/materials/coated.hpp>
 #include <iris/scene/scene.hpp>
 #include <iris/spectrum/color.hpp>
 #include <iris/spectrum/named.hpp>
+#include <iris/spectrum/rgb_sigmoid.hpp>
+#include <iris/spectrum/rgb_upsampling.hpp>
 
 namespace {
 
@@ -211,7 +216,18 @@ TEST(PbrtImport, BadInputIsAnErrorAtFileLineAndColumn) {
         {camera + "WorldBegin\n", "the scene has no shapes"},
         {camera + "WorldBegin\nShape \"sphere\"\n", "the scene has no light"},
         {scene("Shape \"curve\"\n"), "Shape \"curve\" is not supported"},
-        {scene("Texture \"t\" \"spectrum\" \"imagemap\"\n"), "textures are not supported by iris's pbrt-v4 importer yet"},
+        {scene("Texture \"t\" \"spectrum\" \"checkerboard\"\n"), "test.pbrt:9:1: Texture \"t\": the class \"checkerboard\" is not supported"},
+        {scene("Texture \"t\" \"spectrum\" \"imagemap\"\n"), "test.pbrt:9:1: an imagemap texture has no \"string filename\""},
+        {scene("Texture \"t\" \"float\" \"imagemap\" \"string filename\" \"r.png\"\n"), "float image textures (roughness, bump or alpha maps) are not supported"},
+        {scene("Texture \"t\" \"color\" \"constant\"\n"), "the kind must be \"spectrum\" or \"float\""},
+        {scene("Texture \"t\" \"spectrum\" \"constant\" \"rgb value\" [ 2 0 0 ]\n"), "is a reflectance: components must be at most 1"},
+        {scene("Texture \"t\" \"spectrum\" \"scale\" \"texture tex\" \"nope\"\n"), "test.pbrt:9:32: unknown spectrum texture 'nope'"},
+        {scene("Texture \"t\" \"spectrum\" \"constant\"\nTexture \"t\" \"spectrum\" \"constant\"\n"), "test.pbrt:10:1: Texture \"t\" \"spectrum\" is defined twice"},
+        {scene("Texture \"t\" \"spectrum\" \"constant\" \"float uscale\" 2\n"), "parameter \"float uscale\" of Texture \"t\" \"spectrum\" \"constant\" is not supported"},
+        {scene("Material \"diffuse\" \"texture reflectance\" \"nope\"\n"), "unknown spectrum texture 'nope'"},
+        {scene("Material \"conductor\" \"texture roughness\" \"nope\"\n"), "unknown float texture 'nope'"},
+        {scene("LightSource \"infinite\" \"string filename\" \"sky.pfm\"\n"), "iris reads OpenEXR environment images only"},
+        {scene("LightSource \"infinite\" \"string filename\" \"sky.exr\"\n"), "infinite light image 'sky.exr' does not exist"},
         {scene("Material \"hair\"\nShape \"sphere\"\n"), "material type 'hair' is not supported"},
         {scene("Shape \"sphere\" \"float radius\" 1 \"float zmax\" 0.5\n"), "partial spheres"},
         {scene("Material \"diffuse\" \"rgb reflectance\" [ 2 0 0 ]\n"), "components must be at most 1"},
@@ -224,7 +240,7 @@ TEST(PbrtImport, BadInputIsAnErrorAtFileLineAndColumn) {
         {camera + "WorldBegin\nTranslate 1 2 1e999\n", "test.pbrt:5:15: '1e999' is not a number"},
         {camera + "WorldBegin\nCamera \"perspective\"\n", "Camera is allowed only before WorldBegin"},
         {scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"), "participating media are not supported yet"},
-        {scene("LightSource \"point\" \"float power\" 10\n"), "\"power\" is not supported yet"},
+        {scene("LightSource \"point\" \"float illuminance\" 10\n"), "test.pbrt:9:21: parameter \"float illuminance\" of LightSource \"point\" is not supported"},
         {scene("Shape \"sphere\" \"float radius\" [ 1 2 ]\n"), "takes 1 value, got 2"},
         // mismatched nesting, values that overflow, bad geometry (found by review)
         {scene("ObjectBegin \"a\"\nAttributeEnd\nObjectEnd\n"), "test.pbrt:10:1: AttributeEnd without a matching AttributeBegin (mismatched nesting)"},
@@ -397,4 +413,241 @@ TEST(PbrtImport, IncludesAreReadRelativeToTheMainFileAndCyclesAreRefused) {
         EXPECT_NE(std::string(e.what()).find("more.pbrt:1:1:"), std::string::npos) << e.what();
     }
     fs::remove_all(dir);
+}
+
+TEST(PbrtImport, TexturesReachTheDiffuseReflectance) {
+    const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-tex-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    iris::image img(2, 1);
+    img(0, 0) = {0.8f, 0.6f, 0.4f};
+    img(1, 0) = {0.2f, 0.2f, 0.2f};
+    iris::exr::write(dir / "grid.exr", img);
+    const std::string quad = "Shape \"trianglemesh\" \"point3 P\" [ -1 0 -1  1 0 -1  1 0 1  -1 0 1 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n";
+    std::ofstream(dir / "main.pbrt")
+        << camera << "WorldBegin\n" << lamp
+        << "Texture \"grid\" \"spectrum\" \"imagemap\" \"string filename\" \"grid.exr\" \"float uscale\" 2 \"float vdelta\" 0.5 "
+           "\"string wrap\" \"clamp\"\n"
+           "Texture \"half\" \"spectrum\" \"scale\" \"texture tex\" \"grid\" \"float scale\" 0.5\n"
+           "Texture \"c\" \"spectrum\" \"constant\" \"rgb value\" [ 0.2 0.4 0.6 ]\n"
+           "Texture \"m\" \"spectrum\" \"mix\" \"texture tex1\" \"c\" \"rgb tex2\" [ 1 1 1 ] \"float amount\" 0.25\n"
+           "Texture \"r\" \"float\" \"constant\" \"float value\" 0.04\n"
+           "Texture \"r2\" \"float\" \"scale\" \"texture tex\" \"r\" \"float scale\" 4\n"
+           "Material \"diffuse\" \"texture reflectance\" \"half\"\n" << quad
+        << "Material \"coateddiffuse\" \"texture reflectance\" \"half\"\n" << quad
+        << "Material \"diffuse\" \"texture reflectance\" \"m\"\n" << quad
+        << "Material \"conductor\" \"texture roughness\" \"r2\"\n" << quad;
+    const auto s = iris::scene::load_scene_file(dir / "main.pbrt");
+    ASSERT_EQ(s.textures.size(), 1u);  // one image, shared by the two materials that use it
+    const auto& t = s.textures[0];
+    EXPECT_EQ(t.wrap, iris::texture_wrap::clamp);
+    EXPECT_EQ(t.uv_scale, glm::vec2(2.0f, 1.0f));
+    EXPECT_EQ(t.uv_offset, glm::vec2(0.0f, 0.5f));
+    // an EXR is linear: texel 0 is (0.8, 0.6, 0.4) · 0.5, upsampled as iris upsamples a texel
+    const auto w = iris::upsample_linear_srgb({0.4, 0.3, 0.2});
+    EXPECT_NEAR(t.weights[0].x, w.red, 1e-6);
+    EXPECT_NEAR(t.weights[0].y, w.green, 1e-6);
+    EXPECT_NEAR(t.weights[0].z, w.blue, 1e-6);
+    const auto* d = iris::diffuse_part(s.materials[s.shapes[1].material]);
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->texture, std::optional<std::uint32_t>(0u));
+    const auto* coated = std::get_if<iris::material::coated>(&s.materials[s.shapes[2].material]);
+    ASSERT_NE(coated, nullptr);
+    EXPECT_EQ(iris::diffuse_part(s.materials[s.shapes[2].material])->texture, std::optional<std::uint32_t>(0u));
+    // the mix of two constants is the mix of their spectra (each upsampled as pbrt-v4 does)
+    const auto* mixed = iris::diffuse_part(s.materials[s.shapes[3].material]);
+    ASSERT_NE(mixed, nullptr);
+    EXPECT_FALSE(mixed->texture.has_value());
+    const auto a = iris::rgb_to_sigmoid({0.2, 0.4, 0.6}), b = iris::rgb_to_sigmoid({1.0, 1.0, 1.0});
+    for (double l : {400.0, 500.0, 600.0, 700.0}) EXPECT_NEAR(mixed->reflectance(l), 0.75 * a(l) + 0.25 * b(l), 1e-9) << l;
+    // a float texture as a roughness: 0.04 · 4, remapped (√) as pbrt-v4 does
+    const auto* metal = std::get_if<iris::material::conductor>(&s.materials[s.shapes[4].material]);
+    ASSERT_NE(metal, nullptr);
+    EXPECT_NEAR(metal->roughness, 0.4f, 1e-6f);
+    // what cannot be represented is refused where it is written
+    const auto refused = [&](const std::string& world, const std::string& message) {
+        std::ofstream(dir / "bad.pbrt", std::ios::trunc) << camera << "WorldBegin\n" << lamp
+                                                          << "Texture \"grid\" \"spectrum\" \"imagemap\" \"string filename\" \"grid.exr\"\n"
+                                                          << world;
+        try {
+            (void)iris::scene::load_scene_file(dir / "bad.pbrt");
+            ADD_FAILURE() << "no error for " << world;
+        } catch (const iris::scene::error& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    refused("Material \"diffuse\" \"texture reflectance\" \"grid\"\nShape \"sphere\"\n", "bad.pbrt:11:1: a textured material on a sphere");
+    refused("Texture \"m\" \"spectrum\" \"mix\" \"texture tex1\" \"grid\"\n", "a mix texture of an image texture is not supported");
+    refused("Material \"conductor\" \"texture eta\" \"grid\"\n", "an image texture is supported only as a diffuse or coateddiffuse");
+    refused("Texture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"grid.exr\" \"bool invert\" true\n", "\"bool invert\" true) is not supported");
+    refused("Texture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"grid.exr\" \"string wrap\" \"black\"\n", "imagemap wrap \"black\" is not supported");
+    refused("Texture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"grid.exr\" \"string mapping\" \"spherical\"\n", "texture mapping \"spherical\" is not supported");
+    refused("Texture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"grid.exr\" \"string encoding\" \"gamma 2.2\"\n", "imagemap encoding \"gamma 2.2\" is not supported");
+    // a filter other than bilinear is an approximation: a note, an error under --strict
+    std::ofstream(dir / "ewa.pbrt", std::ios::trunc) << camera << "WorldBegin\n" << lamp
+                                                      << "Texture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"grid.exr\" \"string filter\" \"ewa\"\n"
+                                                      << "Material \"diffuse\" \"texture reflectance\" \"i\"\n" << quad;
+    const auto ewa = iris::scene::load_scene_file(dir / "ewa.pbrt");
+    EXPECT_TRUE(std::any_of(ewa.notes.begin(), ewa.notes.end(), [](const std::string& n) { return n.find("filter \"ewa\" approximated") != std::string::npos; }));
+    fs::remove_all(dir);
+}
+
+TEST(PbrtImport, InfiniteLightImagesAreEqualAreaMapsTurnedByTheirTransform) {
+    const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-env-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    iris::image img(8, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) img(x, y) = {1.0f, 1.0f, 1.0f};
+    iris::exr::write(dir / "sky.exr", img);
+    const auto to_map = [&](const std::string& transform) {
+        std::ofstream(dir / "main.pbrt", std::ios::trunc)
+            << camera << "WorldBegin\nAttributeBegin\n" << transform
+            << "LightSource \"infinite\" \"string filename\" \"sky.exr\" \"float scale\" 2\nAttributeEnd\nShape \"sphere\"\n";
+        const auto s = iris::scene::load_scene_file(dir / "main.pbrt");
+        EXPECT_TRUE(s.environment && s.environment->map);
+        EXPECT_EQ(s.environment->map->mapping, iris::environment_mapping::equal_area);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(s.environment->map->weights[0][i], 2.0f, 1e-5f);  // white: each basis weight 1, times scale
+        return s.environment->map->to_map;
+    };
+    const auto near = [](glm::vec3 a, glm::vec3 b) { return glm::length(a - b) < 1e-6f; };
+    // pbrt-v4's +z is the map's centre (iris's map convention: +y); the plain LookAt mirrors x
+    const glm::mat3 plain = to_map("");
+    EXPECT_TRUE(near(plain * glm::vec3(0, 0, 1), {0, 1, 0}));
+    EXPECT_TRUE(near(plain * glm::vec3(-1, 0, 0), {1, 0, 0}));  // pbrt-v4's +x, mirrored into iris's world
+    // Rotate 90° about y takes the light's +z to pbrt's +x, i.e. iris's −x
+    const glm::mat3 turned = to_map("Rotate 90 0 1 0\n");
+    EXPECT_TRUE(near(turned * glm::vec3(-1, 0, 0), {0, 1, 0}));
+    // "illuminance" E_v: pbrt-v4's measure of a map's illuminance is 2π/(W·H)·Σ Y·cos θ over the
+    // upper hemisphere's texels, π/2 for a white map (half of ∫ cos dω = π: its factor is 2π,
+    // not 4π); the texels are scaled to make it E_v
+    {
+        iris::image big(64, 64);
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) big(x, y) = {1.0f, 1.0f, 1.0f};
+        iris::exr::write(dir / "white.exr", big);
+        std::ofstream(dir / "lit.pbrt", std::ios::trunc)
+            << camera << "WorldBegin\nLightSource \"infinite\" \"string filename\" \"white.exr\" \"float illuminance\" 5\nShape \"sphere\"\n";
+        const auto s = iris::scene::load_scene_file(dir / "lit.pbrt");
+        for (int i = 0; i < 3; ++i)  // the midpoint rule over 64 × 64 texels: within 0.1 %
+            EXPECT_NEAR(s.environment->map->weights[100][i], 5.0 / (std::numbers::pi / 2.0), 0.001 * 5.0 / (std::numbers::pi / 2.0));
+    }
+    // a uniform scale does not matter (pbrt-v4 normalises), a non-uniform one is refused
+    EXPECT_TRUE(near(to_map("Scale 3 3 3\n") * glm::vec3(0, 0, 1), {0, 1, 0}));
+    std::ofstream(dir / "bad.pbrt") << camera << "WorldBegin\nScale 1 2 1\nLightSource \"infinite\" \"string filename\" \"sky.exr\"\nShape \"sphere\"\n";
+    try {
+        (void)iris::scene::load_scene_file(dir / "bad.pbrt");
+        ADD_FAILURE() << "no error for a sheared infinite light";
+    } catch (const iris::scene::error& e) {
+        EXPECT_NE(std::string(e.what()).find("non-uniform scale"), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
+}
+
+// pbrt-v4's "power" and "illuminance" (lights.cpp's k_e): a point light's luminous intensity is
+// φ/(4π); a spot's φ over its cone (the falloff band counted half); an area light's luminance
+// φ/(π·A·sides) with A each shape's own area (a sphere's 4πr² in object space, each triangle
+// of a mesh); a distant light's and a uniform sky's illuminance E_v (a sky's luminance E_v/π).
+TEST(PbrtImport, PowerAndIlluminanceTakePbrtsNormalisation) {
+    const double pi = std::numbers::pi;
+    const auto s = import(camera + "WorldBegin\n"
+                          "AttributeBegin\n AreaLightSource \"diffuse\" \"blackbody L\" 4000 \"float power\" 100 \"float scale\" 2\n"
+                          " Shape \"trianglemesh\" \"point3 P\" [ -1 3 -1  1 3 -1  1 3 1  -1 3 1 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+                          " Scale 3 3 3\n Shape \"sphere\" \"float radius\" 0.5\n"
+                          " AreaLightSource \"diffuse\" \"float power\" 10 \"bool twosided\" true\n"
+                          " Shape \"disk\" \"float radius\" 0.5 \"float innerradius\" 0.25\nAttributeEnd\n"
+                          "LightSource \"point\" \"float power\" 50\n"
+                          "LightSource \"spot\" \"float power\" 50 \"float coneangle\" 40 \"float conedeltaangle\" 10\n"
+                          "LightSource \"distant\" \"float illuminance\" 7\n"
+                          "LightSource \"infinite\" \"float illuminance\" 3\n"
+                          "Shape \"sphere\"\n");
+    ASSERT_EQ(s.shapes.size(), 4u);
+    // the quad's triangles have area 2 each, in world space
+    EXPECT_NEAR(luminance_of(s.emitters[*s.shapes[0].emitter].radiance), 2.0 * 100.0 / (pi * 2.0), 1e-9);
+    // the sphere: pbrt-v4's Area() is in object space, the Scale does not enter
+    EXPECT_NEAR(luminance_of(s.emitters[*s.shapes[1].emitter].radiance), 2.0 * 100.0 / (pi * 4.0 * pi * 0.25), 1e-9);
+    EXPECT_NE(*s.shapes[0].emitter, *s.shapes[1].emitter);
+    // a two-sided annulus: both sides share the power
+    EXPECT_NEAR(luminance_of(s.emitters[*s.shapes[2].emitter].radiance), 10.0 / (pi * pi * (0.25 - 0.0625) * 2.0), 1e-9);
+    ASSERT_EQ(s.lights.size(), 3u);
+    EXPECT_NEAR(luminance_of(s.emitters[std::get<iris::light::point>(s.lights[0]).emitter].radiance), 50.0 / (4.0 * pi), 1e-9);
+    const double c_end = std::cos(40.0 * pi / 180.0), c_start = std::cos(30.0 * pi / 180.0);
+    EXPECT_NEAR(luminance_of(s.emitters[std::get<iris::light::spot>(s.lights[1]).emitter].radiance),
+                50.0 / (2.0 * pi * ((1.0 - c_start) + (c_start - c_end) / 2.0)), 1e-9);
+    EXPECT_NEAR(luminance_of(s.emitters[std::get<iris::light::distant>(s.lights[2]).emitter].radiance), 7.0, 1e-9);
+    ASSERT_TRUE(s.environment.has_value());
+    EXPECT_NEAR(luminance_of(s.environment->radiance), 3.0 / pi, 1e-9);
+    // what iris cannot give pbrt-v4's per-shape normalisation is refused
+    EXPECT_NE(error_of(scene("AreaLightSource \"diffuse\" \"float power\" 5\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0  5 5 0 ] "
+                             "\"integer indices\" [ 0 1 2  1 3 2 ]\n"))
+                  .find("triangles differ in area"),
+              std::string::npos);
+    EXPECT_NE(error_of(scene("AreaLightSource \"diffuse\" \"float power\" 5\nShape \"plymesh\" \"string filename\" \"x.ply\"\n"))
+                  .find("\"power\" on a plymesh is not supported"),
+              std::string::npos);
+}
+
+// pbrt-v4 reads gzip-compressed scene files: an Include of `part.pbrt.gz` is decompressed
+// (bounded), and one that is not gzip is an error naming it.
+TEST(PbrtImport, IncludedFilesMayBeGzipCompressed) {
+    const fs::path dir = fs::temp_directory_path() / ("iris-pbrt-import-incgz-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string part = lamp + "Shape \"sphere\"\n";
+    gzFile gz = gzopen((dir / "part.pbrt.gz").c_str(), "wb");
+    ASSERT_NE(gz, nullptr);
+    ASSERT_EQ(gzwrite(gz, part.data(), static_cast<unsigned>(part.size())), static_cast<int>(part.size()));
+    gzclose(gz);
+    std::ofstream(dir / "main.pbrt") << camera << "WorldBegin\nInclude \"part.pbrt.gz\"\n";
+    EXPECT_EQ(iris::scene::load_scene_file(dir / "main.pbrt").shapes.size(), 2u);
+    // and so may the main file be
+    const std::string main = camera + "WorldBegin\n" + part;
+    gz = gzopen((dir / "whole.pbrt.gz").c_str(), "wb");
+    ASSERT_NE(gz, nullptr);
+    ASSERT_EQ(gzwrite(gz, main.data(), static_cast<unsigned>(main.size())), static_cast<int>(main.size()));
+    gzclose(gz);
+    EXPECT_EQ(iris::scene::load_scene_file(dir / "whole.pbrt.gz").shapes.size(), 2u);
+    std::ofstream(dir / "part.pbrt.gz", std::ios::trunc) << part;
+    try {
+        (void)iris::scene::load_scene_file(dir / "main.pbrt");
+        ADD_FAILURE() << "no error for a .gz include that is not gzip";
+    } catch (const iris::scene::error& e) {
+        EXPECT_NE(std::string(e.what()).find("main.pbrt:5:1: included file 'part.pbrt.gz': not a valid gzip file"), std::string::npos) << e.what();
+    }
+    fs::remove_all(dir);
+}
+
+// pbrt-v4's ActiveTransform: iris renders the pose at the shutter's opening — StartTime's
+// transforms move the shape, EndTime's do not — and says so (a note; an error with strict).
+TEST(PbrtImport, MotionIsApproximatedByTheShutterOpeningPose) {
+    const std::string world = "AttributeBegin\nActiveTransform StartTime\nTranslate 1 0 0\nActiveTransform EndTime\nTranslate 0 5 0\n"
+                              "ActiveTransform All\nTranslate 0 0 2\nShape \"sphere\"\nAttributeEnd\nShape \"sphere\"\n";
+    const auto doc = iris::scene::parse_pbrt_document(scene(world), "test.pbrt", fs::temp_directory_path());
+    ASSERT_EQ(doc.shapes.size(), 3u);
+    // the plain LookAt mirrors x into iris's world: the start's +1 in x is −1
+    const glm::vec4 o = doc.shapes[1].transform * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(o.x, -1.0f, 1e-6f);
+    EXPECT_NEAR(o.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(o.z, 2.0f, 1e-6f);
+    // ActiveTransform is part of the attribute state: the last shape is where it was
+    const glm::vec4 q = doc.shapes[2].transform * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(glm::length(glm::vec3(q)), 0.0f, 1e-6f);
+    const auto& notes = doc.desc.notes;
+    EXPECT_EQ(std::count_if(notes.begin(), notes.end(), [](const std::string& n) { return n.find("motion blur approximated") != std::string::npos; }), 2);
+    const std::string boxed = camera + "PixelFilter \"box\"\nWorldBegin\n" + lamp + world;  // no other note before it
+    EXPECT_NE(error_of(boxed, {.strict = true}).find("test.pbrt:12:1: Translate under ActiveTransform StartTime: motion blur approximated"),
+              std::string::npos)
+        << error_of(boxed, {.strict = true});
+    EXPECT_NE(error_of(scene("ActiveTransform Sometimes\n")).find("expected All, StartTime or EndTime"), std::string::npos);
+}
+
+// An "rgb" where pbrt-v4 wants an unbounded spectrum (a conductor's eta and k) is its
+// RGBUnboundedSpectrum: m·S(λ), m = 2·max(r, g, b), S Jakob–Hanika's sigmoid of rgb/m.
+TEST(PbrtImport, AnRgbIndexIsPbrtsUnboundedSpectrum) {
+    const auto s = import(scene("Material \"conductor\" \"rgb eta\" [ 0.2 0.9 1.1 ] \"rgb k\" [ 3.9 2.4 2.1 ]\nShape \"sphere\"\n"));
+    const auto* c = std::get_if<iris::material::conductor>(&s.materials[s.shapes[1].material]);
+    ASSERT_NE(c, nullptr);
+    ASSERT_TRUE(c->ior.has_value());
+    const auto eta = iris::rgb_to_sigmoid({0.2 / 2.2, 0.9 / 2.2, 1.1 / 2.2}), k = iris::rgb_to_sigmoid({3.9 / 7.8, 2.4 / 7.8, 2.1 / 7.8});
+    for (double l : {420.0, 550.0, 680.0}) {
+        EXPECT_NEAR(c->ior->eta(l), 2.2 * eta(l), 1e-9) << l;
+        EXPECT_NEAR(c->ior->k(l), 7.8 * k(l), 1e-9) << l;
+    }
 }

@@ -212,3 +212,29 @@ TEST(MeshAttributes, ReachTheSceneThroughTheTransform) {
         EXPECT_NE(what.find("vertex 1 has a zero normal"), std::string::npos) << what;
     }
 }
+
+// `uv_scale` and `uv_offset` map the surface's uv to the image's (pbrt-v4's uscale, vscale,
+// udelta, vdelta): a lookup at uv is the unmapped lookup at uv·scale + offset; bad values
+// are errors at their pointer.
+TEST(TextureImage, UvScaleAndOffsetMapTheSurfacesUv) {
+    temp_dir dir;
+    iris::exr::write(dir.path / "ramp.exr", make_image(4, 3, [](int x, int y) {
+        return iris::rgb_pixel{0.1f + 0.2f * static_cast<float>(x), 0.3f, 0.2f * static_cast<float>(y)};
+    }));
+    const auto plain = iris::scene::parse_scene(scene_with(R"({"texture": "ramp.exr"})"), "tex.json", dir.path);
+    const auto mapped = iris::scene::parse_scene(scene_with(R"({"texture": "ramp.exr", "uv_scale": [2, -0.5], "uv_offset": [0.25, 0.1]})"),
+                                                 "tex.json", dir.path);
+    const auto& a = plain.textures[0];
+    const auto& b = mapped.textures[0];
+    EXPECT_EQ(b.uv_scale, glm::vec2(2.0f, -0.5f));
+    EXPECT_EQ(b.uv_offset, glm::vec2(0.25f, 0.1f));
+    for (const glm::vec2 uv : {glm::vec2(0.1f, 0.2f), glm::vec2(0.6f, 0.9f), glm::vec2(-0.3f, 1.7f)}) {
+        const glm::vec3 want = iris::lookup(a, uv * glm::vec2(2.0f, -0.5f) + glm::vec2(0.25f, 0.1f));
+        EXPECT_LT(glm::length(iris::lookup(b, uv) - want), 1e-6f) << uv.x << ' ' << uv.y;
+    }
+    EXPECT_NE(iris::scene::fingerprint(plain), iris::scene::fingerprint(mapped));
+    EXPECT_NE(error_of(R"({"texture": "ramp.exr", "uv_scale": [0, 1]})", dir.path).find("tex.json:3: materials/m/reflectance/uv_scale/0: a uv scale factor must not be 0"),
+              std::string::npos)
+        << error_of(R"({"texture": "ramp.exr", "uv_scale": [0, 1]})", dir.path);
+    EXPECT_NE(error_of(R"({"texture": "ramp.exr", "uv_offset": [1]})", dir.path).find("uv_offset"), std::string::npos);
+}

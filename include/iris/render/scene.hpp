@@ -19,6 +19,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/mat3x3.hpp>
 
 #include "iris/image.hpp"
 
@@ -214,6 +215,9 @@ struct image_texture {
     int width = 0, height = 0;
     std::vector<glm::vec3> weights;  ///< width × height
     texture_wrap wrap = texture_wrap::repeat;
+    /// The surface's uv mapped to the image's: (u·scale.x + offset.x, v·scale.y + offset.y)
+    /// (pbrt-v4's `uscale`, `vscale`, `udelta`, `vdelta`).
+    glm::vec2 uv_scale{1.0f}, uv_offset{0.0f};
     std::string file;                ///< where it came from (for messages and `iris-scene info`)
     std::size_t clipped_texels = 0;  ///< texels outside [0, 1] (after the scale) clamped into it
 };
@@ -230,6 +234,9 @@ struct environment_map {
     environment_mapping mapping = environment_mapping::latlong;
     int width = 0, height = 0;
     std::vector<glm::vec3> weights;  ///< width × height, each ≥ 0
+    /// World direction → the map's frame (orthogonal; the identity unless the scene turns
+    /// the environment, as a pbrt-v4 `LightSource "infinite"` under a transform does).
+    glm::mat3 to_map{1.0f};
     std::string file;                ///< where it came from (for messages and `iris-scene info`)
     std::size_t negative_texels = 0; ///< texels with a negative (out-of-gamut) component, clamped to 0
 };

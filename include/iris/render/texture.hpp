@@ -53,9 +53,11 @@ inline int wrap_texel(int i, int n, texture_wrap wrap) noexcept {
 }
 }  // namespace detail
 
-/// \brief The texture's weights at uv, bilinear between the four nearest texel centres.
+/// \brief The texture's weights at the surface's uv (mapped by the texture's `uv_scale` and
+/// `uv_offset`), bilinear between the four nearest texel centres.
 /// A uv that is not finite gives texel (0, 0)'s value (never an out-of-range read).
 inline glm::vec3 lookup(const image_texture& tex, glm::vec2 uv) noexcept {
+    uv = uv * tex.uv_scale + tex.uv_offset;
     const float fx = uv.x * static_cast<float>(tex.width) - 0.5f;
     const float fy = (1.0f - uv.y) * static_cast<float>(tex.height) - 0.5f;
     if (!(std::fabs(fx) < 1e9f) || !(std::fabs(fy) < 1e9f)) return tex.weights[0];

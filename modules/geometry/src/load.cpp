@@ -20,7 +20,7 @@
 
 #include <glm/geometric.hpp>
 #include <tiny_obj_loader.h>
-#include <zlib.h>
+#include "iris/gzip.hpp"
 
 #include "iris/geometry/triangle_mesh.hpp"
 
@@ -590,40 +590,10 @@ triangle_mesh load_mesh(const std::filesystem::path& path) {
 }
 
 std::string gunzip(std::string_view compressed, const std::filesystem::path& name, std::size_t max_bytes) {
-    z_stream z{};
-    // 15 + 32: a window of 2^15 and zlib's detection of the gzip (or zlib) header
-    if (inflateInit2(&z, 15 + 32) != Z_OK) fail(name, "cannot initialise zlib");
-    std::string out;
-    std::array<char, 1 << 16> chunk{};
-    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
-    z.avail_in = static_cast<uInt>(std::min<std::size_t>(compressed.size(), std::numeric_limits<uInt>::max()));
-    std::size_t fed = z.avail_in;
-    int rc = Z_OK;
-    while (rc != Z_STREAM_END) {
-        z.next_out = reinterpret_cast<Bytef*>(chunk.data());
-        z.avail_out = static_cast<uInt>(chunk.size());
-        rc = inflate(&z, Z_NO_FLUSH);
-        if (rc == Z_BUF_ERROR && z.avail_in == 0 && fed < compressed.size()) {  // inputs past 4 GiB: feed the rest
-            const std::size_t more = std::min<std::size_t>(compressed.size() - fed, std::numeric_limits<uInt>::max());
-            z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data() + fed));
-            z.avail_in = static_cast<uInt>(more);
-            fed += more;
-            rc = Z_OK;
-        }
-        if (rc != Z_OK && rc != Z_STREAM_END) {
-            const std::string why = rc == Z_BUF_ERROR ? std::string("truncated") : z.msg ? std::string(z.msg) : "error " + std::to_string(rc);
-            inflateEnd(&z);
-            fail(name, "not a valid gzip file (" + why + ")");
-        }
-        out.append(chunk.data(), chunk.size() - z.avail_out);
-        if (out.size() > max_bytes) {
-            inflateEnd(&z);
-            fail(name, "decompresses to more than " +
-                           (max_bytes >= (1u << 20) ? std::to_string(max_bytes >> 20) + " MiB" : std::to_string(max_bytes) + " bytes"));
-        }
-    }
-    inflateEnd(&z);
-    return out;
+    std::string why;
+    auto out = iris::gunzip_bytes(compressed, max_bytes, why);
+    if (!out) fail(name, why);
+    return std::move(*out);
 }
 
 triangle_mesh parse_mesh(std::string_view bytes, mesh_format format, const std::filesystem::path& name) {

@@ -12,6 +12,7 @@
 
 #include "iris/exr/exr.hpp"
 #include "iris/geometry/mesh.hpp"
+#include "iris/render/lights/directions.hpp"
 #include "iris/render/materials/coated.hpp"
 #include "iris/spectrum/rgb_upsampling.hpp"
 #include "iris/scene/scene.hpp"
@@ -140,6 +141,8 @@ double triangle_area(const iris::triangle_mesh& m, const std::array<std::uint32_
 /// [0, 1] clamp (radiance is unbounded), times the document's scale.
 iris::environment_map read_environment_image(const scene_document& doc, const environment_image_spec& spec) {
     const auto fail = [&](const std::string& message) -> void {
+        // a JSON document's pointer, or an imported pbrt-v4 file's line (no pointer)
+        if (!spec.file_name.empty()) throw error(spec.file_name, spec.line, "", message);
         throw error(doc.source, spec.line, spec.pointer + "/image", message);
     };
     exr::loaded img;
@@ -150,6 +153,7 @@ iris::environment_map read_environment_image(const scene_document& doc, const en
     }
     iris::environment_map m;
     m.mapping = spec.mapping;
+    m.to_map = spec.to_map;
     m.width = img.pixels.width();
     m.height = img.pixels.height();
     m.file = spec.file.string();
@@ -157,6 +161,22 @@ iris::environment_map read_environment_image(const scene_document& doc, const en
     if (spec.mapping == environment_mapping::equal_area && m.width != m.height)
         fail("an equal-area environment image must be square, got " + std::to_string(m.width) + "x" +
              std::to_string(m.height));
+    double scale = spec.scale;
+    if (spec.illuminance) {  // pbrt-v4's measure of an equal-area map's illuminance (document.hpp)
+        double e = 0.0;
+        for (int y = 0; y < m.height; ++y)
+            for (int x = 0; x < m.width; ++x) {
+                const glm::vec2 p{(static_cast<float>(x) + 0.5f) / static_cast<float>(m.width),
+                                  (static_cast<float>(y) + 0.5f) / static_cast<float>(m.height)};
+                const float up = iris::lights::equal_area_to_direction(p).y;  // the map's +z (its up)
+                if (!(up > 0.0f)) continue;
+                const auto& px = img.pixels(x, y);
+                e += (0.2126 * px.r + 0.7152 * px.g + 0.0722 * px.b) * static_cast<double>(up);
+            }
+        e *= 2.0 * std::numbers::pi / (static_cast<double>(m.width) * static_cast<double>(m.height));
+        if (!(e > 0.0)) fail("the environment image has no illuminance from above to scale to \"illuminance\"");
+        scale *= *spec.illuminance / e;
+    }
     const auto& a = iris::detail::rgb_upsampling_matrix();
     m.weights.reserve(img.pixels.pixel_count());
     double total = 0.0;
@@ -168,7 +188,7 @@ iris::environment_map read_environment_image(const scene_document& doc, const en
         glm::vec3 w;
         for (int i = 0; i < 3; ++i) {
             const auto r = static_cast<std::size_t>(i);
-            w[i] = static_cast<float>(spec.scale * (a[r][0] * in[0] + a[r][1] * in[1] + a[r][2] * in[2]));
+            w[i] = static_cast<float>(scale * (a[r][0] * in[0] + a[r][1] * in[1] + a[r][2] * in[2]));
             if (!std::isfinite(w[i])) fail("the environment image's radiance times its scale is not finite");
         }
         total += static_cast<double>(w.x + w.y + w.z);
@@ -184,6 +204,8 @@ iris::environment_map read_environment_image(const scene_document& doc, const en
 /// 1), then upsampled as a constant reflectance is (`upsample_linear_srgb`).
 iris::image_texture read_texture(const scene_document& doc, const texture_spec& spec) {
     const auto fail = [&](const std::string& message) -> void {
+        // a JSON document's pointer, or an imported pbrt-v4 file's line (no pointer)
+        if (!spec.file_name.empty()) throw error(spec.file_name, spec.line, "", message);
         throw error(doc.source, spec.line, spec.pointer + "/texture", message);
     };
     std::string ext = spec.file.extension().string();
@@ -204,6 +226,8 @@ iris::image_texture read_texture(const scene_document& doc, const texture_spec& 
     t.width = pixels.width();
     t.height = pixels.height();
     t.wrap = spec.wrap;
+    t.uv_scale = spec.uv_scale;
+    t.uv_offset = spec.uv_offset;
     t.file = spec.file.string();
     if (t.width < 1 || t.height < 1) fail("the texture image has no pixels");
     t.weights.reserve(pixels.pixel_count());

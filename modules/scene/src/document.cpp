@@ -124,8 +124,9 @@ std::filesystem::path existing_file(const reader& f, const std::filesystem::path
 
 /// {"texture": FILE, "wrap": ..., "scale": ..., "encoding": ...}: a reflectance image.
 texture_spec read_texture(const reader& r, const std::filesystem::path& base_dir) {
-    r.expect_object({"texture", "wrap", "scale", "encoding"},
-                    "a reflectance texture {\"texture\": FILE, \"wrap\": ..., \"scale\": ..., \"encoding\": ...}");
+    r.expect_object({"texture", "wrap", "scale", "encoding", "uv_scale", "uv_offset"},
+                    "a reflectance texture {\"texture\": FILE, \"wrap\": ..., \"scale\": ..., \"encoding\": ..., "
+                    "\"uv_scale\": [su, sv], \"uv_offset\": [du, dv]}");
     texture_spec t;
     t.pointer = r.pointer();
     t.line = r.context().locations.find(r.pointer());
@@ -145,6 +146,18 @@ texture_spec read_texture(const reader& r, const std::filesystem::path& base_dir
         else w.fail("unknown texture wrap '" + v + "'; expected repeat, clamp or mirror");
     }
     if (r.has("scale")) t.scale = r.at("scale").number_in(0.0, 1e6, true, false, "a scale of the texture's values");
+    const auto pair = [&](std::string_view key, glm::vec2& out, bool nonzero) {
+        if (!r.has(key)) return;
+        const reader a = r.at(key);
+        a.expect_array(2, nonzero ? "a uv scale [su, sv]" : "a uv offset [du, dv]");
+        for (glm::length_t i = 0; i < 2; ++i) {
+            const reader x = a.at(static_cast<std::size_t>(i));
+            out[i] = static_cast<float>(x.number_in(-1e6, 1e6, false, false, nonzero ? "a uv scale factor" : "a uv offset"));
+            if (nonzero && out[i] == 0.0f) x.fail("a uv scale factor must not be 0");
+        }
+    };
+    pair("uv_scale", t.uv_scale, true);
+    pair("uv_offset", t.uv_offset, false);
     if (r.has("encoding")) {
         const reader e = r.at("encoding");
         const std::string v = e.string();
@@ -267,24 +280,6 @@ parsed_emitter read_emitter(const reader& r, const std::string& name, const deta
     return e;
 }
 
-/// The three emission basis spectra of an environment image: the reflectance basis of
-/// iris/spectrum/rgb_upsampling.hpp times D65 at luminance 1, so that a texel of linear sRGB
-/// (1, 1, 1) is D65 with Y = 1 and any texel's colour is its RGB (1 nm over 360–830 nm).
-std::array<tabulated_spectrum, 3> environment_basis(const tabulated_spectrum& d65) {
-    const double k = white_normalisation(d65);
-    std::array<std::vector<double>, 3> v;
-    std::vector<double> lambda;
-    for (int l = 360; l <= 830; ++l) {
-        const double x = l;
-        lambda.push_back(x);
-        const double e = k * d65(x);
-        v[0].push_back(e * rgb_upsampling::red_basis(x));
-        v[1].push_back(e * rgb_upsampling::green_basis(x));
-        v[2].push_back(e * rgb_upsampling::blue_basis(x));
-    }
-    return {tabulated_spectrum(lambda, v[0], outside::zero), tabulated_spectrum(lambda, v[1], outside::zero),
-            tabulated_spectrum(lambda, v[2], outside::zero)};
-}
 
 std::optional<environment_desc> read_environment(const reader& root, const detail::domain& d,
                                                  const std::filesystem::path& base_dir,
@@ -292,7 +287,8 @@ std::optional<environment_desc> read_environment(const reader& root, const detai
     if (!root.has("environment")) return std::nullopt;
     const reader r = root.at("environment");
     if (r.has("image")) {
-        r.expect_object({"image", "mapping", "scale"}, "an environment image {\"image\": FILE.exr, \"mapping\": ..., \"scale\": ...}");
+        r.expect_object({"image", "mapping", "scale", "rotation"},
+                        "an environment image {\"image\": FILE.exr, \"mapping\": ..., \"scale\": ..., \"rotation\": ...}");
         environment_image_spec spec;
         spec.pointer = r.pointer();
         spec.line = r.context().locations.find(r.pointer());
@@ -317,12 +313,27 @@ std::optional<environment_desc> read_environment(const reader& root, const detai
         }
         if (r.has("scale"))
             spec.scale = r.at("scale").number_in(0.0, max_luminance, true, false, "a scale of the image's radiance");
+        if (r.has("rotation")) {  // rows of the matrix taking the map's directions to the world's
+            const reader m = r.at("rotation");
+            m.expect_array(3, "a rotation: three rows [[a, b, c], [d, e, f], [g, h, i]]");
+            glm::mat3 to_world;
+            for (glm::length_t i = 0; i < 3; ++i) {
+                const glm::vec3 row = read_point(m.at(static_cast<std::size_t>(i)), "a row [a, b, c] of the rotation");
+                for (glm::length_t j = 0; j < 3; ++j) to_world[j][i] = row[j];  // glm: [column][row]
+            }
+            const glm::mat3 e = glm::transpose(to_world) * to_world;
+            for (glm::length_t i = 0; i < 3; ++i)
+                for (glm::length_t j = 0; j < 3; ++j)
+                    if (std::fabs(e[i][j] - (i == j ? 1.0f : 0.0f)) > 1e-4f)
+                        m.fail("the rotation must be orthogonal (its rows unit length and perpendicular, to 1e-4)");
+            spec.to_map = glm::transpose(to_world);
+        }
         image = spec;
         const auto d65 = find_illuminant("D65");
         environment_desc env;
         env.spd_name = "D65";
         env.radiance = d65->spectrum().scaled(white_normalisation(d65->spectrum()));
-        env.basis = environment_basis(d65->spectrum());
+        env.basis = detail::environment_basis(d65->spectrum());
         return env;
     }
     r.expect_object({"spd", "luminance"}, "an environment object {\"spd\": ..., \"luminance\": ...} or {\"image\": FILE.exr, ...}");

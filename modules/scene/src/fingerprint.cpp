@@ -147,6 +147,8 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
         h(scene.environment->radiance);
         if (const auto& m = scene.environment->map) {  // hashed only when present: older scenes keep their fingerprint
             h(static_cast<int>(m->mapping));
+            if (m->to_map != glm::mat3(1.0f))  // only when turned: older scenes keep their fingerprint
+                for (glm::length_t col = 0; col < 3; ++col) h(m->to_map[col]);
             h(m->width);
             h(m->height);
             for (const auto& w : m->weights) h(w);
@@ -159,6 +161,9 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
             h(t.width);
             h(t.height);
             h(static_cast<int>(t.wrap));
+            if (t.uv_scale != glm::vec2(1.0f) || t.uv_offset != glm::vec2(0.0f)) {  // likewise
+                h(t.uv_scale.x), h(t.uv_scale.y), h(t.uv_offset.x), h(t.uv_offset.y);
+            }
             for (const auto& w : t.weights) h(w);
         }
     }

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "iris/gzip.hpp"
 #include "iris/scene/scene.hpp"
 
 namespace iris::scene {
@@ -33,15 +34,22 @@ scene_document builtin_document(std::string_view name) {
     return parse_scene_document(*text, std::string(name) + ".json", {});
 }
 
-bool is_pbrt(const std::filesystem::path& path) {
+std::string lower_extension(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".pbrt";
+    return ext;
 }
 
-/// A JSON scene file, or a pbrt-v4 one (by its extension, .pbrt).
+/// A JSON scene file, or a pbrt-v4 one (by its extension: .pbrt, or .pbrt.gz compressed).
 scene_document file_document(const std::filesystem::path& path, const pbrt_import_options& options) {
-    if (is_pbrt(path)) return parse_pbrt_document(read_text(path), path.string(), path.parent_path(), options);
+    const std::string ext = lower_extension(path);
+    if (ext == ".gz" && lower_extension(path.stem()) == ".pbrt") {
+        std::string why;
+        auto text = gunzip_bytes(read_text(path), std::size_t{4} << 30, why);
+        if (!text) throw error(path.string(), 0, "", why);
+        return parse_pbrt_document(*text, path.string(), path.parent_path(), options);
+    }
+    if (ext == ".pbrt") return parse_pbrt_document(read_text(path), path.string(), path.parent_path(), options);
     return parse_scene_document(read_text(path), path.string(), path.parent_path());
 }
 

@@ -15,6 +15,8 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <memory>
 #include <map>
 #include <numbers>
 #include <set>
@@ -28,11 +30,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "iris/gzip.hpp"
 #include "iris/scene/document.hpp"
 #include "iris/spectrum/blackbody.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/spectrum/named.hpp"
 #include "iris/spectrum/rgb_sigmoid.hpp"
+#include "spectra.hpp"
 
 namespace iris::scene {
 namespace {
@@ -278,10 +282,22 @@ struct spectrum_value {
 // ---- the parser -----------------------------------------------------------------------
 
 struct graphics_state {
-    glm::dmat4 ctm{1.0};
+    glm::dmat4 ctm{1.0};  ///< at the shutter's opening (the StartTime transform)
+    /// pbrt-v4's ActiveTransform: which of the start and end transforms the transform
+    /// directives change; iris renders the start's pose only (no motion blur).
+    enum class active_transform { all, start, end } active = active_transform::all;
     bool reverse_orientation = false;
     std::optional<std::uint32_t> material;          ///< the current material (nullopt: pbrt's default)
     std::optional<std::uint32_t> area_light;        ///< the current AreaLightSource's emitter
+    /// An AreaLightSource with "power": pbrt-v4 normalises each shape's radiance by its own
+    /// area, so each shape gets its own emitter (made when the shape is read).
+    struct powered_light {
+        std::string name;
+        tabulated_spectrum radiance;  ///< luminance-normalised, times scale
+        bool two_sided = false;
+        double power = 0.0;
+    };
+    std::shared_ptr<const powered_light> area_power;
 };
 
 class importer {
@@ -452,9 +468,31 @@ private:
         }
     }
 
+    /// Whether a transform directive changes iris's (the shutter-open) transform: not under
+    /// `ActiveTransform EndTime`. A transform that differs between start and end is motion
+    /// blur, which iris approximates by the start's pose (a note, an error under --strict).
+    bool moves(const token& t) {
+        if (m_state.active == graphics_state::active_transform::all) return true;
+        note(t.at, t.text + " under ActiveTransform " +
+                       (m_state.active == graphics_state::active_transform::start ? "StartTime" : "EndTime") +
+                       ": motion blur approximated by the pose at the shutter's opening (iris renders no motion blur)");
+        return m_state.active == graphics_state::active_transform::start;
+    }
+
     void run_directive(const token& t) {
         if (t.type != token::kind::word) fail(t.at, "expected a directive, found '" + t.text + "'");
         const std::string& d = t.text;
+        static const std::set<std::string> transforms{"Translate", "Scale", "Rotate", "LookAt", "Transform",
+                                                      "ConcatTransform", "Identity", "CoordSysTransform"};
+        if (transforms.count(d) && m_state.active != graphics_state::active_transform::all) {
+            const graphics_state::active_transform a = m_state.active;
+            const glm::dmat4 before = m_state.ctm;
+            m_state.active = graphics_state::active_transform::all;  // read it as any other transform
+            run_directive(t);
+            m_state.active = a;
+            if (!moves(t)) m_state.ctm = before;
+            return;
+        }
         if (d == "Translate") {
             const auto v = numbers(3, t.at, "Translate's x y z");
             apply(glm::translate(glm::dmat4(1.0), glm::dvec3(v[0], v[1], v[2])));
@@ -498,7 +536,10 @@ private:
             m_stack.pop_back();
         } else if (d == "ActiveTransform") {
             const auto w = expect(token::kind::word, t.at, "All, StartTime or EndTime");
-            if (w.text != "All") fail(w.at, "ActiveTransform " + w.text + ": motion blur is not supported (only All)");
+            if (w.text == "All") m_state.active = graphics_state::active_transform::all;
+            else if (w.text == "StartTime") m_state.active = graphics_state::active_transform::start;
+            else if (w.text == "EndTime") m_state.active = graphics_state::active_transform::end;
+            else fail(w.at, "expected All, StartTime or EndTime after ActiveTransform, found '" + w.text + "'");
         } else if (d == "TransformTimes") {
             numbers(2, t.at, "TransformTimes's start and end");
             note(t.at, "TransformTimes ignored (iris renders no motion blur)", false);
@@ -591,8 +632,7 @@ private:
             m_state.material = it->second;
         } else if (d == "Texture") {
             require_world(t, true);
-            const std::string n = quoted(t.at, "the texture's name");
-            fail(t.at, "Texture \"" + n + "\": textures are not supported by iris's pbrt-v4 importer yet (docs/pbrt-import.md)");
+            texture_directive(t);
         } else if (d == "LightSource") {
             require_world(t, true);
             light_source(t);
@@ -738,10 +778,15 @@ private:
         const std::string n = quoted(t.at, "the file to include");
         if (static_cast<int>(m_files.size()) > max_include_depth) fail(t.at, "includes nested more than 32 deep");
         const std::filesystem::path p = resolve(n);
-        if (p.extension() == ".gz") fail(t.at, "compressed files are not supported: '" + n + "'");
         for (const auto& f : m_files)
             if (f.file() == p.string()) fail(t.at, "'" + n + "' includes itself (through " + m_files.back().file() + ")");
         std::string text = read_file(p, t.at, "included file", m_options.read_files);
+        if (p.extension() == ".gz") {  // pbrt-v4 reads gzip-compressed scene files (`part.pbrt.gz`)
+            std::string why;
+            auto plain = gunzip_bytes(text, max_included_bytes, why);
+            if (!plain) fail(t.at, "included file '" + n + "': " + why);
+            text = std::move(*plain);
+        }
         m_included_bytes += text.size();
         if (++m_included > max_included_files || m_included_bytes > max_included_bytes)
             fail(t.at, "more than 10 000 included files or 4 GiB of included text: refused");
@@ -763,7 +808,13 @@ private:
         parameter* p = ps.find(name);
         if (!p) return std::nullopt;
         spectrum_value v;
-        if (p->type == "texture") fail(p->at, "\"texture " + p->name + "\": textures are not supported yet (docs/pbrt-import.md)");
+        if (p->type == "texture") {
+            texture_result r = named_texture(ps.expect(*p, {"texture"}, 1).strings[0], "spectrum", p->at, use);
+            if (r.image)
+                fail(p->at, "\"texture " + p->name + "\": an image texture is supported only as a diffuse or coateddiffuse "
+                            "\"reflectance\" (docs/pbrt-import.md)");
+            return std::move(*r.constant);
+        }
         if (p->type == "float") {
             const double x = ps.expect(*p, {"float"}, 1).numbers[0];
             v.constant = x;
@@ -784,8 +835,10 @@ private:
                 const auto e = rgb_illuminant::from_linear_srgb(col);
                 v.table = tabulate([&](double l) { return e(l); });
                 v.rgb_illuminant = true;
-            } else {
-                fail(p->at, "\"rgb " + p->name + "\": an RGB value is not supported here (give a spectrum)");
+            } else {  // pbrt-v4's RGBUnboundedSpectrum: m·S(λ), m = 2·max, S the sigmoid of rgb/m
+                const double m = 2.0 * std::max({c[0], c[1], c[2]});
+                const auto sg = rgb_to_sigmoid(m > 0.0 ? rgb{c[0] / m, c[1] / m, c[2] / m} : rgb{0.0, 0.0, 0.0});
+                v.table = tabulate([&](double l) { return m > 0.0 ? m * sg(l) : 0.0; }, outside::clamp);
             }
             return v;
         }
@@ -908,9 +961,22 @@ private:
     double light_scale(parameters& ps, const location& at) {
         const double scale = ps.number("scale", 1.0);
         if (!(scale >= 0.0)) fail(at, "\"float scale\" must be at least 0");
-        if (ps.find("power")) fail(at, "\"power\" is not supported yet: give \"scale\" (docs/pbrt-import.md)");
-        if (ps.find("illuminance")) fail(at, "\"illuminance\" is not supported yet: give \"scale\" (docs/pbrt-import.md)");
         return scale;
+    }
+
+    /// pbrt-v4's "power" (a light's luminous power) or "illuminance" (`name`): the value, or
+    /// nothing when absent or not positive (pbrt-v4 ignores it then: a note says so).
+    std::optional<double> photometric(parameters& ps, const char* name, const location& at) {
+        parameter* p = ps.find(name);
+        if (!p) return std::nullopt;
+        const double v = ps.expect(*p, {"float"}, 1).numbers[0];
+        if (!(v > 0.0)) {
+            note(p->at, std::string("\"float ") + name + "\" " + reader_number(v) + " ignored (pbrt-v4 reads only a positive one)", false);
+            return std::nullopt;
+        }
+        if (!(v <= 1e15)) fail(p->at, std::string("\"float ") + name + "\" must be at most 1e15");
+        (void)at;
+        return v;
     }
 
     std::uint32_t add_emitter(const std::string& name, tabulated_spectrum radiance, bool two_sided) {
@@ -930,10 +996,256 @@ private:
             }
     }
 
+    // -- textures (docs/pbrt-import.md, "Textures")
+
+    /// A named texture as written: its class and parameters, evaluated where it is used (a
+    /// spectrum texture's "rgb" is a reflectance or an index depending on the parameter).
+    struct texture_def {
+        std::string type;  ///< imagemap, constant, scale, mix
+        parameters ps;
+        location at;
+    };
+    /// What a texture evaluates to: a constant (spectrum or float), or an image.
+    struct texture_result {
+        std::optional<spectrum_value> constant;  ///< a spectrum texture's constant value
+        std::optional<double> value;             ///< a float texture's constant value
+        std::optional<texture_spec> image;       ///< an image (spectrum textures only)
+    };
+
+    void texture_directive(const token& t) {
+        const std::string n = quoted(t.at, "the texture's name");
+        const std::string kind = quoted(t.at, "the texture's kind (\"spectrum\" or \"float\")");
+        if (kind != "spectrum" && kind != "float")
+            fail(t.at, "Texture \"" + n + "\": the kind must be \"spectrum\" or \"float\", found \"" + kind + "\"");
+        const std::string type = quoted(t.at, "the texture's class");
+        texture_def def{type, read_parameters("Texture \"" + n + "\" \"" + kind + "\" \"" + type + "\""), t.at};
+        static const std::map<std::string, std::vector<std::string_view>> allowed{
+            {"imagemap", {"filename", "wrap", "filter", "maxanisotropy", "encoding", "scale", "invert", "mapping", "uscale",
+                          "vscale", "udelta", "vdelta"}},
+            {"constant", {"value"}},
+            {"scale", {"tex", "scale"}},
+            {"mix", {"tex1", "tex2", "amount"}}};
+        const auto it = allowed.find(type);
+        if (it == allowed.end())
+            fail(t.at, "Texture \"" + n + "\": the class \"" + type + "\" is not supported (iris: imagemap, constant, scale, mix; "
+                       "docs/pbrt-import.md)");
+        for (const auto& p : def.ps.list) {
+            if (std::find(it->second.begin(), it->second.end(), p.name) == it->second.end())
+                fail(p.at, "parameter \"" + p.type + " " + p.name + "\" of " + def.ps.directive +
+                               " is not supported by iris's pbrt-v4 importer (docs/pbrt-import.md)");
+            if (p.type == "texture") {  // what it names must exist now: no cycles, and the error where it is written
+                if (p.strings.size() != 1) fail(p.at, "\"texture " + p.name + "\" takes one name");
+                const std::string sub = p.name == "amount" || (p.name == "scale" && type == "scale") || kind == "float" ? "float" : "spectrum";
+                if (!m_textures.count({sub, p.strings[0]}))
+                    fail(p.at, "unknown " + sub + " texture '" + p.strings[0] + "' (no Texture \"" + p.strings[0] + "\" \"" + sub + "\" before it)");
+            }
+        }
+        if (type == "imagemap" && kind == "float")
+            fail(t.at, "Texture \"" + n + "\": float image textures (roughness, bump or alpha maps) are not supported; "
+                       "iris reads image textures as diffuse reflectances only");
+        if (m_textures.count({kind, n})) fail(t.at, "Texture \"" + n + "\" \"" + kind + "\" is defined twice");
+        m_textures.emplace(std::make_pair(kind, n), std::move(def));
+        // evaluated once here, as pbrt-v4 creates every texture: a bad one is an error even unused
+        // (a spectrum texture as a reflectance, the only use iris has for one)
+        (void)named_texture(n, kind, t.at, spectrum_use::albedo);
+    }
+
+    /// The texture `name` of `kind` evaluated for `use`.
+    texture_result named_texture(const std::string& name, const std::string& kind, const location& at, spectrum_use use) {
+        const auto it = m_textures.find({kind, name});
+        if (it == m_textures.end())
+            fail(at, "unknown " + kind + " texture '" + name + "' (no Texture \"" + name + "\" \"" + kind + "\" before it)");
+        texture_def def = it->second;  // a copy: its parameters are marked as this evaluation reads them
+        texture_result r;
+        auto& ps = def.ps;
+        if (def.type == "constant") {
+            r = operand(ps, "value", kind, use, 1.0);
+        } else if (def.type == "scale") {
+            texture_result tex = operand(ps, "tex", kind, use, 1.0);
+            const texture_result k = operand(ps, "scale", "float", use, 1.0);
+            if (!k.value) fail(def.at, "a scale texture's \"scale\" must be a constant");
+            const double s = *k.value;
+            if (tex.image) {
+                if (!(s > 0.0 && s <= 1e6)) fail(def.at, "an image texture's scale must lie in (0, 1e6]");
+                tex.image->scale *= s;
+            } else if (tex.value) {
+                *tex.value *= s;
+            } else {
+                tex.constant->table = tex.constant->table.scaled(s);
+                tex.constant->name = "scaled";
+                tex.constant->glass.reset();
+                if (tex.constant->constant) *tex.constant->constant *= s;
+            }
+            r = std::move(tex);
+        } else if (def.type == "mix") {
+            texture_result a = operand(ps, "tex1", kind, use, 0.0), b = operand(ps, "tex2", kind, use, 1.0);
+            const texture_result k = operand(ps, "amount", "float", use, 0.5);
+            if (!k.value) fail(def.at, "a mix texture's \"amount\" must be a constant (iris mixes constants only)");
+            const double w = *k.value;
+            if (w == 0.0 && !a.image) r = std::move(a);
+            else if (w == 1.0 && !b.image) r = std::move(b);
+            else if (a.image || b.image) fail(def.at, "a mix texture of an image texture is not supported (iris mixes constants only)");
+            else if (a.value) r.value = (1.0 - w) * *a.value + w * *b.value;
+            else {
+                spectrum_value v;
+                v.name = "mix";
+                const tabulated_spectrum ta = a.constant->table, tb = b.constant->table;
+                v.table = tabulate([&](double l) { return (1.0 - w) * ta(l) + w * tb(l); }, outside::clamp);
+                r.constant = std::move(v);
+            }
+        } else {  // imagemap, spectrum (float image maps are refused where they are defined)
+            r.image = image_texture_spec(ps, def.at);
+        }
+        ps.finish();
+        return r;
+    }
+
+    /// One operand of a texture: a named texture, or a value of the parameter's own type.
+    texture_result operand(parameters& ps, const std::string& name, const std::string& kind, spectrum_use use, double fallback) {
+        texture_result r;
+        parameter* p = ps.find(name);
+        if (p && p->type == "texture") return named_texture(p->strings[0], kind, p->at, use);
+        if (kind == "float") {
+            r.value = p ? ps.expect(*p, {"float"}, 1).numbers[0] : fallback;
+            return r;
+        }
+        if (auto s = spectrum(ps, name, use)) {
+            r.constant = std::move(*s);
+        } else {
+            spectrum_value v;
+            v.name = "constant";
+            v.constant = fallback;
+            v.table = tabulate([&](double) { return fallback; }, outside::clamp);
+            r.constant = std::move(v);
+        }
+        return r;
+    }
+
+    texture_spec image_texture_spec(parameters& ps, const location& at) {
+        texture_spec spec;
+        const std::string f = ps.string("filename", "");
+        if (f.empty()) fail(at, "an imagemap texture has no \"string filename\"");
+        spec.file = resolve(f);
+        std::string ext = spec.file.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".exr" && ext != ".bmp" && ext != ".tga")
+            fail(at, "imagemap '" + f + "': iris reads .png, .jpg, .bmp, .tga and .exr images");
+        if (m_options.read_files) {
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(spec.file, ec)) fail(at, "imagemap '" + f + "' does not exist or is not a file");
+        } else {
+            fail(at, "imagemap '" + f + "' not read: reading files is disabled");
+        }
+        const std::string wrap = ps.string("wrap", "repeat");
+        if (wrap == "repeat") spec.wrap = texture_wrap::repeat;
+        else if (wrap == "clamp") spec.wrap = texture_wrap::clamp;
+        else fail(at, "imagemap wrap \"" + wrap + "\" is not supported (iris: repeat, clamp)");
+        const std::string filter = ps.string("filter", "bilinear");
+        if (filter != "bilinear") {
+            if (filter != "point" && filter != "trilinear" && filter != "ewa") fail(at, "unknown imagemap filter \"" + filter + "\"");
+            note(at, "imagemap filter \"" + filter + "\" approximated by a bilinear lookup (iris does not filter textures)");
+        }
+        ps.number("maxanisotropy", 8.0);  // only the "ewa" filter reads it
+        // pbrt-v4's default encoding: sRGB for PNG, linear for everything else
+        const std::string encoding = ps.string("encoding", ext == ".png" ? "sRGB" : "linear");
+        if (encoding == "sRGB") spec.srgb = true;
+        else if (encoding == "linear") spec.srgb = false;
+        else fail(at, "imagemap encoding \"" + encoding + "\" is not supported (iris: sRGB, linear)");
+        spec.scale = ps.number("scale", 1.0);
+        if (!(spec.scale > 0.0 && spec.scale <= 1e6)) fail(at, "an imagemap's \"float scale\" must lie in (0, 1e6]");
+        if (ps.boolean("invert", false)) fail(at, "an inverted imagemap (\"bool invert\" true) is not supported");
+        const std::string mapping = ps.string("mapping", "uv");
+        if (mapping != "uv") fail(at, "texture mapping \"" + mapping + "\" is not supported (iris: uv)");
+        const double su = ps.number("uscale", 1.0), sv = ps.number("vscale", 1.0);
+        const double du = ps.number("udelta", 0.0), dv = ps.number("vdelta", 0.0);
+        for (double x : {su, sv, du, dv})
+            if (!(std::fabs(x) <= 1e6)) fail(at, "a texture's uscale, vscale, udelta and vdelta must lie in [-1e6, 1e6]");
+        if (su == 0.0 || sv == 0.0) fail(at, "a texture's uscale and vscale must not be 0");
+        spec.uv_scale = {static_cast<float>(su), static_cast<float>(sv)};
+        spec.uv_offset = {static_cast<float>(du), static_cast<float>(dv)};
+        spec.pointer = "";
+        spec.line = at.line;
+        spec.file_name = at.file;
+        return spec;
+    }
+
+    /// The document's index of an image texture (one entry per distinct image and setting).
+    std::uint32_t add_texture(const texture_spec& spec) {
+        for (std::size_t i = 0; i < m_doc.textures.size(); ++i) {
+            const auto& o = m_doc.textures[i];
+            if (o.file == spec.file && o.wrap == spec.wrap && o.scale == spec.scale && o.srgb == spec.srgb &&
+                o.uv_scale == spec.uv_scale && o.uv_offset == spec.uv_offset)
+                return static_cast<std::uint32_t>(i);
+        }
+        m_doc.textures.push_back(spec);
+        return static_cast<std::uint32_t>(m_doc.textures.size() - 1);
+    }
+
+    /// A float parameter that may also name a constant float texture.
+    double float_parameter(parameters& ps, const std::string& name, double fallback) {
+        parameter* p = ps.find(name);
+        if (p && p->type == "texture") {
+            const texture_result r = named_texture(ps.expect(*p, {"texture"}, 1).strings[0], "float", p->at, spectrum_use::unbounded);
+            return *r.value;
+        }
+        return ps.number(name, fallback);
+    }
+
+    void check_reflectance(const tabulated_spectrum& s, const location& at, const std::string& param) {
+        for (double x : s.values())
+            if (x < 0.0 || x > 1.0) fail(at, "\"" + param + "\" must lie in [0, 1] at every wavelength");
+    }
+
+    /// `LightSource "infinite" "string filename"`: pbrt-v4's equal-area image, its texels
+    /// linear sRGB with (1, 1, 1) D65 at luminance 1 times `scale`, turned by the light's
+    /// transform (mirror included) — iris's environment image (docs/pbrt-import.md).
+    void environment_image(const token& t, const std::string& f, double scale, const glm::dmat4& m,
+                           std::optional<double> illuminance) {
+        environment_image_spec spec;
+        spec.file = resolve(f);
+        std::string ext = spec.file.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (ext != ".exr") fail(t.at, "infinite light image '" + f + "': iris reads OpenEXR environment images only");
+        if (!m_options.read_files) fail(t.at, "infinite light image '" + f + "' not read: reading files is disabled");
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(spec.file, ec)) fail(t.at, "infinite light image '" + f + "' does not exist or is not a file");
+        if (!(scale > 0.0 && scale <= 1e12)) fail(t.at, "an infinite light's \"float scale\" must lie in (0, 1e12]");
+        spec.mapping = environment_mapping::equal_area;
+        spec.scale = scale;
+        spec.illuminance = illuminance;
+        // the light's frame in iris's world: orthogonal up to a uniform scale (pbrt-v4 normalises
+        // the direction after its inverse transform, so a uniform scale does not matter)
+        glm::dmat3 a(m);
+        const glm::dmat3 e = glm::transpose(a) * a;
+        const double c = (e[0][0] + e[1][1] + e[2][2]) / 3.0;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (!(std::fabs(e[i][j] - (i == j ? c : 0.0)) <= 1e-6 * c))
+                    fail(t.at, "an infinite light under a non-uniform scale or shear is not supported (iris turns environments only)");
+        a /= std::sqrt(c);
+        // pbrt-v4's light frame (x, y, z) as the equal-area map's iris convention (x, z, −y)
+        // (iris/render/lights/directions.hpp): to_map = P · a⁻¹, a⁻¹ = aᵀ
+        glm::dmat3 p(0.0);  // glm: [column][row]
+        p[0][0] = 1.0;      // row 0: x
+        p[2][1] = 1.0;      // row 1: z
+        p[1][2] = -1.0;     // row 2: −y
+        spec.to_map = glm::mat3(p * glm::transpose(a));
+        spec.pointer = "";
+        spec.line = t.at.line;
+        spec.file_name = t.at.file;
+        m_doc.environment_image = spec;
+        const auto d65 = find_illuminant("D65");
+        environment_desc env;
+        env.spd_name = "D65";
+        env.radiance = d65->spectrum().scaled(white_normalisation(d65->spectrum()));
+        env.basis = detail::environment_basis(d65->spectrum());
+        m_doc.desc.environment = std::move(env);
+    }
+
     // -- materials
     float roughness(parameters& ps, bool remap_default, const location& at, const std::string& prefix = "") {
-        const double r = ps.number(prefix + "roughness", 0.0);
-        const double u = ps.number(prefix + "uroughness", r), v = ps.number(prefix + "vroughness", r);
+        const double r = float_parameter(ps, prefix + "roughness", 0.0);
+        const double u = float_parameter(ps, prefix + "uroughness", r), v = float_parameter(ps, prefix + "vroughness", r);
         const bool remap = ps.boolean("remaproughness", remap_default);
         if (u < 0.0 || v < 0.0) fail(at, "a roughness must be at least 0");
         if (u != v) note(at, "anisotropic roughness (" + reader_number(u) + ", " + reader_number(v) + ") approximated by its mean: iris's GGX is isotropic");
@@ -947,8 +1259,7 @@ private:
         auto reflectance = [&](const char* param, double fallback) {
             auto s = spectrum(ps, param, spectrum_use::albedo);
             if (!s) return tabulate([&](double) { return fallback; }, outside::clamp);
-            for (double x : s->table.values())
-                if (x < 0.0 || x > 1.0) fail(at, std::string("\"") + param + "\" must lie in [0, 1] at every wavelength");
+            check_reflectance(s->table, at, param);
             return s->table;
         };
         // pbrt-v4's layered materials: the coat's index, roughness and layer (docs/pbrt-import.md)
@@ -964,7 +1275,7 @@ private:
                 if (!(v >= 1.0 && v <= 4.0)) fail(at, "material '" + name + "': the coat's \"" + eta_name + "\" must lie in [1, 4], it is " + reader_number(v));
                 c.eta = static_cast<float>(v);
             }
-            const double thickness = ps.number("thickness", 0.01);
+            const double thickness = float_parameter(ps, "thickness", 0.01);
             if (!(thickness >= 0.0 && thickness <= 1e3)) fail(at, "\"float thickness\" must lie in [0, 1000]");
             c.thickness = static_cast<float>(thickness);
             c.max_depth = ps.integer("maxdepth", 10);
@@ -974,15 +1285,30 @@ private:
             if (auto a = spectrum(ps, "albedo", spectrum_use::albedo))
                 for (double x : a->table.values())
                     if (x != 0.0) fail(at, "material '" + name + "': a scattering medium in the coat (\"albedo\" > 0) is not supported");
-            const double g = ps.number("g", 0.0);
+            const double g = float_parameter(ps, "g", 0.0);
             if (!(g >= -1.0 && g <= 1.0)) fail(at, "\"float g\" must lie in [-1, 1]");
             return c;
         };
+        // a diffuse reflectance: a spectrum, or a texture (an image's index in the document)
+        auto diffuse = [&]() {
+            if (parameter* p = ps.find("reflectance"); p && p->type == "texture") {
+                texture_result r = named_texture(ps.expect(*p, {"texture"}, 1).strings[0], "spectrum", p->at, spectrum_use::albedo);
+                if (r.image) {
+                    // the constant stands for the texture where one number is needed (the tools' summaries)
+                    material::diffuse d{tabulate([](double) { return 0.5; }, outside::clamp)};
+                    d.texture = add_texture(*r.image);
+                    return d;
+                }
+                check_reflectance(r.constant->table, at, "reflectance");
+                return material::diffuse{r.constant->table};
+            }
+            return material::diffuse{reflectance("reflectance", 0.5)};
+        };
         material_desc m;
         if (type == "diffuse") {
-            m = material::diffuse{reflectance("reflectance", 0.5)};
+            m = diffuse();
         } else if (type == "coateddiffuse") {
-            m = coat(material::coated{material::diffuse{reflectance("reflectance", 0.5)}}, "");
+            m = coat(material::coated{diffuse()}, "");
         } else if (type == "dielectric" || type == "thindielectric") {
             if (type == "thindielectric") fail(at, "thindielectric is not supported yet (docs/pbrt-import.md)");
             material::dielectric d;
@@ -1060,6 +1386,7 @@ private:
         if (type != "diffuse") fail(t.at, "AreaLightSource \"" + type + "\": only \"diffuse\" is supported");
         if (ps.find("filename")) fail(t.at, "an image on an area light is not supported");
         const double scale = light_scale(ps, t.at);
+        const auto power = photometric(ps, "power", t.at);
         const bool two_sided = ps.boolean("twosided", false);
         auto l = spectrum(ps, "L", spectrum_use::illuminant);
         if (!l) {
@@ -1068,6 +1395,13 @@ private:
             l->table = find_illuminant("D65")->spectrum();
         }
         ps.finish();
+        if (power) {  // each shape its own emitter, normalised by its own area (`powered_emitter`)
+            m_state.area_light.reset();
+            m_state.area_power = std::make_shared<const graphics_state::powered_light>(
+                graphics_state::powered_light{l->name, light_radiance(*l, scale, t.at), two_sided, *power});
+            return;
+        }
+        m_state.area_power.reset();
         m_state.area_light = add_emitter(l->name, light_radiance(*l, scale, t.at), two_sided);
     }
 
@@ -1087,20 +1421,28 @@ private:
         };
         if (type == "point") {
             const auto s = spd("I");
+            const auto power = photometric(ps, "power", t.at);  // pbrt-v4: I·φ/(4π)
             const glm::dvec3 from = ps.point("from", {0, 0, 0});
             ps.finish();
             const glm::vec3 at = light_point(m, from, t.at);
-            const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
+            const double k = power ? *power / (4.0 * std::numbers::pi) : 1.0;
+            const auto e = add_emitter(s.name, light_radiance(s, scale * k, t.at), false);
             m_doc.desc.lights.push_back(light::point{at, e});
         } else if (type == "spot") {
             const auto s = spd("I");
             const glm::dvec3 from = ps.point("from", {0, 0, 0}), to = ps.point("to", {0, 0, 1});
             const double cone = ps.number("coneangle", 30.0), delta = ps.number("conedeltaangle", 5.0);
+            const auto power = photometric(ps, "power", t.at);
             ps.finish();
             if (!(cone > 0.0 && cone <= 180.0) || !(delta >= 0.0 && delta < cone))
                 fail(t.at, "a spot light needs 0 < coneangle <= 180 and 0 <= conedeltaangle < coneangle");
             const glm::vec3 p = light_point(m, from, t.at), q = light_point(m, to, t.at);
-            const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
+            double k = 1.0;
+            if (power) {  // pbrt-v4's k_e: the cone's solid angle, its falloff band counted half
+                const double c_end = std::cos(glm::radians(cone)), c_start = std::cos(glm::radians(cone - delta));
+                k = *power / (2.0 * std::numbers::pi * ((1.0 - c_start) + (c_start - c_end) / 2.0));
+            }
+            const auto e = add_emitter(s.name, light_radiance(s, scale * k, t.at), false);
             light::spot l;
             l.position = p;
             l.direction = light_direction(glm::dvec3(q) - glm::dvec3(p), t.at, "a spot light");
@@ -1112,18 +1454,27 @@ private:
             m_doc.desc.lights.push_back(l);
         } else if (type == "distant") {
             const auto s = spd("L");
+            const auto illuminance = photometric(ps, "illuminance", t.at);  // pbrt-v4: L·E_v
             const glm::dvec3 from = ps.point("from", {0, 0, 0}), to = ps.point("to", {0, 0, 1});
             ps.finish();
             const glm::vec3 dir = light_direction(glm::dvec3(m * glm::dvec4(to - from, 0.0)), t.at, "a distant light");  // from → to
-            const auto e = add_emitter(s.name, light_radiance(s, scale, t.at), false);
+            const auto e = add_emitter(s.name, light_radiance(s, scale * illuminance.value_or(1.0), t.at), false);
             m_doc.desc.lights.push_back(light::distant{dir, e});
         } else if (type == "infinite") {
-            if (ps.find("filename")) fail(t.at, "an environment image is not supported by the importer yet (docs/pbrt-import.md)");
             if (ps.find("portal")) fail(t.at, "portals are not supported");
+            if (m_doc.desc.environment) fail(t.at, "a second infinite light (iris has one environment)");
+            const auto illuminance = photometric(ps, "illuminance", t.at);
+            if (const std::string f = ps.string("filename", ""); !f.empty()) {
+                if (ps.find("L")) fail(t.at, "an infinite light takes \"L\" or \"filename\", not both (as pbrt-v4)");
+                ps.finish();
+                environment_image(t, f, scale, m, illuminance);
+                return;
+            }
             const auto s = spd("L");
             ps.finish();
-            if (m_doc.desc.environment) fail(t.at, "a second infinite light (iris has one environment)");
-            m_doc.desc.environment = environment_desc{s.name, light_radiance(s, scale, t.at), std::nullopt, {}};
+            // pbrt-v4: the illuminance of a uniform sky on an upward-facing patch is π·L
+            const double k = illuminance ? *illuminance / std::numbers::pi : 1.0;
+            m_doc.desc.environment = environment_desc{s.name, light_radiance(s, scale * k, t.at), std::nullopt, {}};
         } else {
             fail(t.at, "LightSource \"" + type + "\" is not supported (iris: point, spot, distant, infinite)");
         }
@@ -1228,7 +1579,12 @@ private:
         }
         ps.finish();
         s.material = current_material();
+        if (s.type == shape_type::sphere || s.type == shape_type::disk)
+            if (const auto* d = diffuse_part(m_doc.desc.materials[s.material]); d && d->texture)
+                fail(t.at, "a textured material on a " + type + ": iris tessellates spheres and disks without pbrt-v4's (phi, theta) "
+                           "texture coordinates");
         if (m_state.area_light) s.emitter = m_state.area_light;
+        if (m_state.area_power) s.emitter = powered_emitter(s, type, t.at);
         s.name = type + "." + std::to_string(m_doc.shapes.size());
         s.file_name = t.at.file;
         // pbrt-v4's normal is the object-space winding's, carried by the transform as a normal
@@ -1244,6 +1600,40 @@ private:
         }
         s.transform = glm::mat4(world(m_state.ctm));
         add_shape(std::move(s), t.at);
+    }
+
+    /// The emitter of one shape under an AreaLightSource with "power" φ: pbrt-v4 gives each shape
+    /// (each triangle of a mesh, a whole sphere or disk) radiance scale·S/Y(S)·φ/(π·A·sides), A
+    /// its area (a sphere's and a disk's in object space, as pbrt-v4's Area()); iris's emitter
+    /// has one radiance, so a mesh's triangles must have equal areas.
+    std::uint32_t powered_emitter(const shape_spec& s, const std::string& type, const location& at) {
+        const auto& l = *m_state.area_power;
+        double area = 0.0;
+        if (s.type == shape_type::sphere) {
+            area = 4.0 * std::numbers::pi * double(s.size.x) * double(s.size.x);
+        } else if (s.type == shape_type::disk) {
+            area = std::numbers::pi * (double(s.size.x) * double(s.size.x) - double(s.size.y) * double(s.size.y));
+        } else if (s.type == shape_type::triangles && type == "trianglemesh") {
+            const glm::dmat4 w = world(m_state.ctm);
+            double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+            for (const auto& tri : s.triangles->triangles) {
+                glm::dvec3 p[3];
+                for (int i = 0; i < 3; ++i) p[i] = glm::dvec3(w * glm::dvec4(glm::dvec3(s.triangles->positions[tri[static_cast<std::size_t>(i)]]), 1.0));
+                const double a = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+                lo = std::min(lo, a);
+                hi = std::max(hi, a);
+            }
+            if (!(hi - lo <= 1e-4 * hi))
+                fail(at, "an area light with \"power\" on a trianglemesh whose triangles differ in area: pbrt-v4 gives each "
+                         "triangle that power (radiance φ/(π·A·sides) of its own area), iris's emitter has one radiance");
+            area = hi;
+        } else {
+            fail(at, "an area light with \"power\" on a " + type + " is not supported (iris: trianglemesh with triangles of "
+                     "equal area, sphere, disk)");
+        }
+        if (!(area > 0.0)) fail(at, "an area light with \"power\" on a shape of zero area");
+        const double k = l.power / (std::numbers::pi * area * (l.two_sided ? 2.0 : 1.0));
+        return add_emitter(l.name, light_radiance(spectrum_value{l.name, l.radiance, true, std::nullopt, std::nullopt}, k, at), l.two_sided);
     }
 
     /// The triangles a shape will have (a PLY file's are not known yet: 0).
@@ -1290,6 +1680,7 @@ private:
     std::vector<stack_entry> m_stack;
     std::map<std::string, glm::dmat4> m_coordinate_systems;
     std::map<std::string, std::uint32_t> m_named_materials;
+    std::map<std::pair<std::string, std::string>, texture_def> m_textures;  ///< by (kind, name)
     std::map<std::string, std::vector<shape_spec>> m_objects;
     std::optional<std::string> m_object;
     location m_object_at, m_camera_at;

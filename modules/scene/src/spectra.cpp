@@ -229,4 +229,23 @@ ior_model read_ior(const reader& r, const domain& d) {
     return m;
 }
 
+/// The three emission basis spectra of an environment image: the reflectance basis of
+/// iris/spectrum/rgb_upsampling.hpp times D65 at luminance 1, so that a texel of linear sRGB
+/// (1, 1, 1) is D65 with Y = 1 and any texel's colour is its RGB (1 nm over 360–830 nm).
+std::array<tabulated_spectrum, 3> environment_basis(const tabulated_spectrum& d65) {
+    const double k = white_normalisation(d65);
+    std::array<std::vector<double>, 3> v;
+    std::vector<double> lambda;
+    for (int l = 360; l <= 830; ++l) {
+        const double x = l;
+        lambda.push_back(x);
+        const double e = k * d65(x);
+        v[0].push_back(e * rgb_upsampling::red_basis(x));
+        v[1].push_back(e * rgb_upsampling::green_basis(x));
+        v[2].push_back(e * rgb_upsampling::blue_basis(x));
+    }
+    return {tabulated_spectrum(lambda, v[0], outside::zero), tabulated_spectrum(lambda, v[1], outside::zero),
+            tabulated_spectrum(lambda, v[2], outside::zero)};
+}
+
 }  // namespace iris::scene::detail

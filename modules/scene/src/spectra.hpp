@@ -3,6 +3,7 @@
 /// \brief Reading the spectral parts of a scene file: reflectances, emission SPDs, IOR
 /// models (format: docs/scene-format.md).
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -38,5 +39,10 @@ std::optional<material::conductor_ior> read_conductor_ior(const reader& r);
 
 /// \brief ∫ s(λ) dλ over the domain by 1 nm trapezoids (the light sampler's rule).
 double integrate_over(const tabulated_spectrum& s, const domain& d) noexcept;
+
+/// \brief The three emission basis spectra of an environment image: the reflectance basis
+/// (iris/spectrum/rgb_upsampling.hpp) times `d65` at luminance 1, so that a texel of linear
+/// sRGB (1, 1, 1) is D65 with Y = 1.
+std::array<tabulated_spectrum, 3> environment_basis(const tabulated_spectrum& d65);
 
 }  // namespace iris::scene::detail

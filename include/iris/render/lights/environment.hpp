@@ -19,6 +19,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -37,6 +38,7 @@ public:
     environment_light(const environment_desc& env, std::uint32_t table) : m_table(table) {
         if (!env.map) return;
         m_map = &*env.map;
+        m_from_map = glm::transpose(m_map->to_map);  // orthogonal: its inverse
         const int w = m_map->width, h = m_map->height;
         std::vector<float> density(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
         for (int y = 0; y < h; ++y)
@@ -133,11 +135,13 @@ public:
     }
 
 private:
-    glm::vec2 to_square(const glm::vec3& d) const noexcept {
+    glm::vec2 to_square(const glm::vec3& world) const noexcept {
+        const glm::vec3 d = m_map->to_map * world;
         return m_map->mapping == environment_mapping::latlong ? direction_to_latlong(d) : direction_to_equal_area(d);
     }
     glm::vec3 to_direction(glm::vec2 p) const noexcept {
-        return m_map->mapping == environment_mapping::latlong ? latlong_to_direction(p) : equal_area_to_direction(p);
+        const glm::vec3 d = m_map->mapping == environment_mapping::latlong ? latlong_to_direction(p) : equal_area_to_direction(p);
+        return m_from_map * d;
     }
     /// \brief dω / (dx dy) at p.
     float jacobian(glm::vec2 p) const noexcept {
@@ -167,6 +171,7 @@ private:
 
     std::uint32_t m_table = 0;
     const environment_map* m_map = nullptr;
+    glm::mat3 m_from_map{1.0f};
     piecewise_constant_2d m_distribution;
 };
 

@@ -81,8 +81,13 @@ struct environment_image_spec {
     std::filesystem::path file;  ///< absolute, or relative to the working directory
     environment_mapping mapping = environment_mapping::latlong;
     double scale = 1.0;
+    glm::mat3 to_map{1.0f};  ///< world direction → the map's frame (orthogonal)
+    /// pbrt-v4's "illuminance" E_v: the texels are scaled so that pbrt-v4's measure of the
+    /// map's illuminance (2π/(W·H)·Σ Y·cos θ over the texels of its upper hemisphere) is E_v.
+    std::optional<double> illuminance;
     std::string pointer;
     std::size_t line = 0;
+    std::string file_name;  ///< the file that names it, when not the document's source (an included pbrt file)
 };
 
 /// \brief A reflectance image a material names: read by `build_scene` into
@@ -93,8 +98,10 @@ struct texture_spec {
     texture_wrap wrap = texture_wrap::repeat;
     double scale = 1.0;
     bool srgb = true;  ///< decode 8/16-bit values from sRGB (ignored for EXR, always linear)
+    glm::vec2 uv_scale{1.0f}, uv_offset{0.0f};  ///< the image's uv = surface uv · scale + offset
     std::string pointer;
     std::size_t line = 0;
+    std::string file_name;  ///< the file that names it, when not the document's source (an included pbrt file)
 };
 
 /// \brief A parsed, checked scene that has not been meshed yet.
