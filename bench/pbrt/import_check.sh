@@ -13,18 +13,22 @@
 # pbrt-v4 is not part of iris and never built by it: build it yourself beside iris
 # (github.com/mmp/pbrt-v4, CMake Release, CPU only) and pass the binary. Needs a release
 # build of iris (README command 2). About 10 min on 2 cores.
-# Usage: PBRT=/path/to/pbrt bench/pbrt/import_check.sh [OUT=build/results-pbrt-import] [SPP=1024]
+# Usage: PBRT=/path/to/pbrt bench/pbrt/import_check.sh [OUT=build/results-pbrt-import] [SPP=1024] [SCENE.pbrt ...]
+# (every scene of bench/pbrt/scenes/ without SCENE arguments)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 : "${PBRT:?set PBRT to the pbrt-v4 binary}"
 apps=$PWD/build/release/apps
 out=${1:-build/results-pbrt-import}
 spp=${2:-1024}
+shift 2 2>/dev/null || shift $# || true
+files=("$@")
+[ ${#files[@]} -gt 0 ] || files=(bench/pbrt/scenes/*.pbrt)
 mkdir -p "$out"
 regions() { "$apps/iris-image/iris-image" regions "$1" "$2" --size 12 --floor 0.05; }
 
 printf "%-16s %-8s %-22s %-52s %-52s %s\n" scene pbrt "pbrt / iris s" "iris vs pbrt" "noise: pbrt s1 vs s2" "noise: iris s1 vs s2"
-for f in bench/pbrt/scenes/*.pbrt; do
+for f in "${files[@]}"; do
   name=$(basename "$f" .pbrt)
   integ=$(grep -o 'Integrator "[a-z]*"' "$f" | cut -d'"' -f2)
   est=nee-mis

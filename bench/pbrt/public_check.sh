@@ -4,7 +4,8 @@
 # each scene: a copy of its main file with the film made smaller (WIDTH, default 350 pixels across,
 # the aspect kept) and the sample count given on the command line, written beside the original
 # (Include paths are relative to the main file) and removed afterwards; pbrt-v4 (its volpath, the
-# scene's sampler) and iris (`hwss`, the path tracer, Sobol') render it with seeds 1 and 2 at SPP
+# scene's sampler) and iris (`hwss`, Sobol'; its path tracer, or bdpt where the scene asks for
+# pbrt-v4's bdpt) render it with seeds 1 and 2 at SPP
 # (default 256); `iris-image regions` compares 20x20-pixel regions: iris s1 against pbrt-v4 s1,
 # and each renderer's s1 against its s2 (the noise of the statistic). Speed: each renderer's own
 # render time (set-up excluded) as samples per second, and iris's load time and peak memory
@@ -49,15 +50,19 @@ PY
   nh=$(( (h * width + w / 2) / w ))
   sed -E -e "s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1$nw/" \
          -e "s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1$nh/" "$src" > "$copy"
+  # the same family of estimator: bdpt where the scene asks for pbrt-v4's bdpt, else path tracing
+  est=nee-mis
+  grep -q '^[[:space:]]*Integrator[[:space:]]*"bdpt"' "$src" && est=bdpt
   t=()
   for seed in 1 2; do
     log=$("$PBRT" --nthreads 2 --spp "$spp" --seed "$seed" --outfile "$out/$name-pbrt-s$seed.exr" "$copy" 2>&1 | tr '\r' '\n')
     t+=("$(echo "$log" | grep -o '([0-9.]*s)' | tail -1 | tr -d '(s)')")
-    r=$("$apps/iris-render/iris-render" "$copy" --preset hwss --spp "$spp" --seed "$seed" --threads 2 \
+    r=$("$apps/iris-render/iris-render" "$copy" --preset hwss --estimator "$est" --spp "$spp" --seed "$seed" --threads 2 \
       -o "$out/$name-iris-s$seed.exr" 2>"$out/$name-iris-s$seed.log")
     t+=("$(echo "$r" | grep -o 'spp in [0-9.]* s' | awk '{print $3}')")
   done
-  load=$( { /usr/bin/time -f '%e %M' "$apps/iris-scene/iris-scene" info "$copy" > /dev/null 2>/dev/null; } 2>&1 | tail -1)
+  /usr/bin/time -o "$out/$name-load.txt" -f '%e %M' "$apps/iris-scene/iris-scene" info "$copy" > /dev/null 2>&1
+  load=$(tail -1 "$out/$name-load.txt")
   rm -f "$copy"
   "$apps/iris-image/iris-image" convert "$out/$name-pbrt-s1.exr" -o "$out/$name-pbrt.png" > /dev/null
   "$apps/iris-image/iris-image" convert "$out/$name-iris-s1.exr" -o "$out/$name-iris.png" > /dev/null

@@ -651,3 +651,23 @@ TEST(PbrtImport, AnRgbIndexIsPbrtsUnboundedSpectrum) {
         EXPECT_NEAR(c->ior->k(l), 7.8 * k(l), 1e-9) << l;
     }
 }
+
+// pbrt-v4's film records radiance times its imaging ratio, shutter time × ISO / 100: the
+// importer scales every light by it (a note says so), so the image is pbrt-v4's.
+TEST(PbrtImport, TheImagingRatioScalesEveryLight) {
+    const std::string cam = "LookAt 0 1 5  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 40 \"float shutterclose\" 0.5\n"
+                            "Film \"rgb\" \"float iso\" 150\nPixelFilter \"box\"\n";
+    const auto plain = import(scene("LightSource \"point\" \"float scale\" 3\nLightSource \"infinite\" \"float scale\" 2\nShape \"sphere\"\n"));
+    const auto doc = iris::scene::parse_pbrt_document(cam + "WorldBegin\n" + lamp +
+                                                          "LightSource \"point\" \"float scale\" 3\nLightSource \"infinite\" \"float scale\" 2\nShape \"sphere\"\n",
+                                                      "test.pbrt", fs::temp_directory_path());
+    const double k = 0.5 * 150.0 / 100.0;
+    ASSERT_EQ(doc.desc.emitters.size(), plain.emitters.size());
+    for (std::size_t i = 0; i < plain.emitters.size(); ++i)
+        EXPECT_NEAR(luminance_of(doc.desc.emitters[i].radiance), k * luminance_of(plain.emitters[i].radiance), 1e-9) << i;
+    EXPECT_NEAR(luminance_of(doc.desc.environment->radiance), k * 2.0, 1e-9);
+    EXPECT_TRUE(std::any_of(doc.desc.notes.begin(), doc.desc.notes.end(),
+                            [](const std::string& n) { return n.find("test.pbrt:3:1: pbrt-v4's imaging ratio 0.75") != std::string::npos; }));
+    // an approximation no longer: --strict accepts it
+    EXPECT_EQ(error_of(cam + "WorldBegin\n" + lamp + "Shape \"sphere\"\n", {.strict = true}), "");
+}

@@ -327,6 +327,7 @@ public:
         bool light = !m_doc.desc.lights.empty() || m_doc.desc.environment.has_value();
         for (const auto& s : m_doc.shapes) light |= s.emitter.has_value();
         if (!light) fail(m_end, "the scene has no light (no AreaLightSource on a shape, no LightSource)");
+        imaging_ratio();
         m_doc.desc.notes = std::move(m_notes);
         return std::move(m_doc);
     }
@@ -714,8 +715,8 @@ private:
         ps.find("focaldistance");
         // pbrt-v4's exposure is the shutter's open time (times the film's ISO / 100)
         const double open = ps.number("shutteropen", 0.0), close = ps.number("shutterclose", 1.0);
-        if (close - open != 1.0)
-            note(t.at, "the shutter is open for " + reader_number(close - open) + " s: pbrt-v4 scales its image by that, iris does not");
+        if (!(close - open > 0.0 && close - open <= 1e6)) fail(t.at, "the shutter must be open for (0, 1e6] s (shutterclose > shutteropen)");
+        m_exposure_time = close - open;  // part of pbrt-v4's imaging ratio (`imaging_ratio`)
         ps.finish();
         m_camera_at = t.at;
     }
@@ -736,6 +737,15 @@ private:
         }
         if (parameter* p = ps.find("pixelbounds")) fail(p->at, "pixel bounds are not supported (iris-image crop)");
         if (parameter* p = ps.find("filename")) note(p->at, "Film \"filename\" ignored (iris-render -o names the output)", false);
+        // pbrt-v4's imaging ratio: exposure time × ISO / 100, applied to every light (`imaging_ratio`)
+        m_iso = ps.number("iso", 100.0);
+        if (!(m_iso > 0.0 && m_iso <= 1e6)) fail(t.at, "\"float iso\" must lie in (0, 1e6]");
+        m_iso_at = t.at;
+        if (const std::string sensor = ps.string("sensor", "cie1931"); sensor != "cie1931")
+            note(t.at, "Film \"sensor\" \"" + sensor + "\" approximated by the CIE 1931 observer (iris's film is XYZ; pbrt-v4 "
+                       "also white-balances a camera sensor to 6500 K)");
+        if (const double wb = ps.number("whitebalance", 0.0); wb != 0.0)
+            note(t.at, "Film \"whitebalance\" " + reader_number(wb) + " ignored (iris does not white-balance)");
         for (auto& p : ps.list)
             if (!p.used) {
                 p.used = true;
@@ -994,6 +1004,20 @@ private:
                 p.used = true;
                 note(p.at, kind + " parameter \"" + p.name + "\" ignored" + why, approximation);
             }
+    }
+
+    /// pbrt-v4's film multiplies what it records by exposure time × ISO / 100 (its
+    /// PixelSensor's imaging ratio, 1 by default); iris's film records radiance, so every
+    /// light is scaled by it instead — the same image, linearly.
+    void imaging_ratio() {
+        const double k = m_exposure_time * m_iso / 100.0;
+        if (k == 1.0) return;
+        for (auto& e : m_doc.desc.emitters) e.radiance = e.radiance.scaled(k);
+        if (m_doc.desc.environment) m_doc.desc.environment->radiance = m_doc.desc.environment->radiance.scaled(k);
+        if (m_doc.environment_image) m_doc.environment_image->scale *= k;
+        note(m_iso_at.file.empty() ? m_camera_at : m_iso_at, "pbrt-v4's imaging ratio " + reader_number(k) + " (shutter time " + reader_number(m_exposure_time) +
+                           " s × ISO " + reader_number(m_iso) + " / 100) applied to every light",
+             false);
     }
 
     // -- textures (docs/pbrt-import.md, "Textures")
@@ -1688,6 +1712,8 @@ private:
     glm::dmat4 m_camera_from_world{1.0};
     glm::dmat4 m_mirror{1.0};
     double m_fov = 90.0;
+    double m_exposure_time = 1.0, m_iso = 100.0;  ///< pbrt-v4's imaging ratio (`imaging_ratio`)
+    location m_iso_at;
     bool m_world = false;
     bool m_filter_given = false;
     std::vector<std::string> m_notes;
