@@ -225,6 +225,13 @@ TEST(PbrtImport, BadInputIsAnErrorAtFileLineAndColumn) {
         {scene("Texture \"t\" \"spectrum\" \"constant\"\nTexture \"t\" \"spectrum\" \"constant\"\n"), "test.pbrt:10:1: Texture \"t\" \"spectrum\" is defined twice"},
         {scene("Texture \"t\" \"spectrum\" \"constant\" \"float uscale\" 2\n"), "parameter \"float uscale\" of Texture \"t\" \"spectrum\" \"constant\" is not supported"},
         {scene("Material \"diffuse\" \"texture reflectance\" \"nope\"\n"), "unknown spectrum texture 'nope'"},
+        {scene([] {
+             std::string t = "Texture \"t0\" \"spectrum\" \"constant\"\n";
+             for (int i = 1; i <= 70; ++i)
+                 t += "Texture \"t" + std::to_string(i) + "\" \"spectrum\" \"scale\" \"texture tex\" \"t" + std::to_string(i - 1) + "\"\n";
+             return t;
+         }()),
+         "textures nested more than 64 deep"},
         {scene("Material \"conductor\" \"texture roughness\" \"nope\"\n"), "unknown float texture 'nope'"},
         {scene("LightSource \"infinite\" \"string filename\" \"sky.pfm\"\n"), "iris reads OpenEXR environment images only"},
         {scene("LightSource \"infinite\" \"string filename\" \"sky.exr\"\n"), "infinite light image 'sky.exr' does not exist"},

@@ -46,6 +46,7 @@ constexpr std::size_t max_included_files = 10000;
 constexpr std::size_t max_included_bytes = std::size_t{4} << 30;
 constexpr std::size_t max_triangles = std::size_t{1} << 28;  ///< what a scene may hold (about 270 M)
 constexpr double max_coordinate = 1e7;
+constexpr int max_texture_depth = 64;  ///< textures of textures, at most this deep
 
 // ---- tokens ---------------------------------------------------------------------------
 
@@ -1079,6 +1080,15 @@ private:
         const auto it = m_textures.find({kind, name});
         if (it == m_textures.end())
             fail(at, "unknown " + kind + " texture '" + name + "' (no Texture \"" + name + "\" \"" + kind + "\" before it)");
+        // a bound on the recursion (and on re-evaluating long chains): no cycles are possible
+        // (a texture names only earlier ones), but a chain may be arbitrarily long
+        struct depth_guard {
+            int& d;
+            explicit depth_guard(int& x) : d(x) { ++d; }
+            ~depth_guard() { --d; }
+        } guard(m_texture_depth);
+        if (m_texture_depth > max_texture_depth)
+            fail(at, "textures nested more than " + std::to_string(max_texture_depth) + " deep (a texture of a texture of …)");
         texture_def def = it->second;  // a copy: its parameters are marked as this evaluation reads them
         texture_result r;
         auto& ps = def.ps;
@@ -1705,6 +1715,7 @@ private:
     std::map<std::string, glm::dmat4> m_coordinate_systems;
     std::map<std::string, std::uint32_t> m_named_materials;
     std::map<std::pair<std::string, std::string>, texture_def> m_textures;  ///< by (kind, name)
+    int m_texture_depth = 0;  ///< the nesting of `named_texture` calls
     std::map<std::string, std::vector<shape_spec>> m_objects;
     std::optional<std::string> m_object;
     location m_object_at, m_camera_at;
