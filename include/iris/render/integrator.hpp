@@ -32,6 +32,7 @@
 /// separate instantiation that skipped the ratios saved nothing measurable and was
 /// removed (docs/performance.md).
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -49,6 +50,7 @@
 #include "iris/render/intersector.hpp"
 #include "iris/render/lights.hpp"
 #include "iris/render/random.hpp"
+#include "iris/render/sample_policy.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/render/spectral_bands.hpp"
 #include "iris/render/texture.hpp"
@@ -84,16 +86,6 @@ struct bdpt_settings {
     paths keep = paths::all;
 };
 
-namespace detail {
-/// \brief The B term's bin count of a config: its bias policy's `bins` (80 — 5 nm on
-/// 380–780 nm — for PropagateUnused; fewer for `propagate_coarse<B>`); 1 (unused) for
-/// policies without a B term, so that they carry no 80-wide spectra.
-template <class Config>
-constexpr std::size_t bins_of() noexcept {
-    if constexpr (requires { Config::bias_type::bins; }) return Config::bias_type::bins;
-    else return 1;
-}
-}  // namespace detail
 
 template <class Config, std::size_t Bins = detail::bins_of<Config>()>
 class path_integrator {
@@ -167,12 +159,13 @@ public:
 
         // F_R: Σ_j r_α(λ_j)/p_α(λ_j) (÷ Z_α) · L_j · cmf(λ_j), then B's Σ_b
         xyz v;
-        const float z = scales_pdf ? dist.normalisation() : 1.0f;
-        for (std::size_t j = 0; j < C; ++j) {
-            if (!(wl.pdf(j) > 0.0f) || hp.lc[j] == 0.0f) continue;
-            const double w = Config::bias_type::restricted_factor(dist.restriction(wl[j]), wl.pdf(j), z);
-            add_cmf(v, w * static_cast<double>(hp.lc[j]), wl[j]);
-            if (spectral) spectral->add(wl[j], w * static_cast<double>(hp.lc[j]));
+        if (!hp.lc.is_zero()) {  // (many paths carry nothing: no weights to compute)
+            const std::array<double, C> w = detail::restricted_weights<Config>(dist, wl);
+            for (std::size_t j = 0; j < C; ++j) {
+                if (!(wl.pdf(j) > 0.0f) || hp.lc[j] == 0.0f) continue;
+                add_cmf(v, w[j] * static_cast<double>(hp.lc[j]), wl[j]);
+                if (spectral) spectral->add(wl[j], w[j] * static_cast<double>(hp.lc[j]));
+            }
         }
         bterm.add_xyz(v);
         if (spectral) bterm.add_spectral(*spectral);

@@ -77,11 +77,7 @@ struct splat_weights {
     double k;
     template <class Distribution>
     splat_weights(const Distribution& dist, const sampled_wavelengths<C>& wavelengths, double scale) noexcept
-        : wl(wavelengths), k(scale) {
-        const float z = Config::bias_type::scales_pdf ? dist.normalisation() : 1.0f;
-        for (std::size_t j = 0; j < C; ++j)
-            if (wl.pdf(j) > 0.0f) w[j] = Config::bias_type::restricted_factor(dist.restriction(wl[j]), wl.pdf(j), z);
-    }
+        : w(restricted_weights<Config>(dist, wavelengths)), wl(wavelengths), k(scale) {}
     xyz hero(const sampled_spectrum<C>& value) const noexcept {
         xyz v;
         for (std::size_t j = 0; j < C; ++j)

@@ -98,7 +98,10 @@ public:
     template <class Distribution>
     void start(const Distribution& dist, float u) noexcept {
         m_bp = m_t->lattice.position(u);
-        m_on = complement(dist, u, m_tb);
+        if constexpr (requires { dist.complement(m_t->lattice, u, m_tb); })
+            m_on = dist.complement(m_t->lattice, u, m_tb);  // a policy behind a virtual call (render/sample_policy.hpp)
+        else
+            m_on = complement(dist, m_t->lattice, u, m_tb);
         m_tb_max = 1.0f;
     }
 
@@ -360,9 +363,10 @@ protected:
     /// intervals: each covers a run of bins [first, end), found by a division and moved onto
     /// the exact test lo ≤ λ_b ≤ hi (the one a kernel call would make), then zeroed in one
     /// branch-free pass. Other kernels are evaluated bin by bin.
+public:
     template <class Distribution>
-    bool complement(const Distribution& dist, float u, sampled_spectrum<Bins>& out) const noexcept {
-        const auto& lat = m_t->lattice;
+    static bool complement(const Distribution& dist, const bin_lattice<Bins>& lat, float u,
+                           sampled_spectrum<Bins>& out) noexcept {
         if constexpr (requires { dist.bound_kernel().support(); } &&
                       requires { requires std::remove_cvref_t<decltype(dist.bound_kernel())>::indicator; }) {
             for (std::size_t b = 0; b < Bins; ++b) out[b] = 1.0f;  // in place: assigning a temporary costs a 320-byte rep movsq per sample
@@ -397,6 +401,7 @@ protected:
         }
     }
 
+protected:
     const bin_tables<Bins>* m_t;  ///< a pointer, so that a workspace's instance can be reassigned
     bool m_on = false;
     bin_position m_bp;

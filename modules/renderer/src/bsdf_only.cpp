@@ -1,5 +1,5 @@
 // The instantiations of the independent estimator, `render_bsdf_only<I>` (dispatch.hpp).
-#include "instantiation.hpp"
+#include "core.hpp"
 
 namespace iris::renderer::detail {
 template void render_bsdf_only<isa::baseline>(const render_job&);

@@ -8,10 +8,12 @@
 // where a runtime choice becomes a compile-time one.
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 
 #include "iris/render/film.hpp"
 #include "iris/render/lights.hpp"
 #include "iris/render/random.hpp"
+#include "iris/render/sample_policy.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/embree/intersector.hpp"
 #include "iris/renderer/renderer.hpp"
@@ -63,5 +65,33 @@ void render_light(const render_job& job);
 /// \brief The independent estimator (`bsdf_only_integrator`) with the hot loop for I.
 template <isa I>
 void render_bsdf_only(const render_job& job);
+
+/// \brief A render's passes as the shared instantiations see them: pass i's α and the
+/// preset's wavelength policy at that α (iris/render/sample_policy.hpp), valid until the
+/// next call.
+template <std::size_t C, std::size_t Bins>
+class pass_source {
+public:
+    virtual std::pair<float, const sample_policy<C, Bins>&> operator()(int pass) = 0;
+
+protected:
+    pass_source() = default;
+    pass_source(const pass_source&) = default;
+    pass_source& operator=(const pass_source&) = default;
+    ~pass_source() = default;
+};
+
+/// \name The shared instantiations (core.cpp.in; definitions in core.hpp)
+/// Each estimator compiled once per `core_config<C, Bins, Propagates>` — the shape of a
+/// policy — that some preset has (`IRIS_RENDERER_CORES`, modules/renderer/CMakeLists.txt),
+/// not once per preset: a preset's own code is its `pass_source` (instantiation.hpp).
+/// @{
+template <isa I, std::size_t C, std::size_t Bins, bool Propagates>
+void render_path_core(const render_job& job, pass_source<C, Bins>& passes);
+template <std::size_t C, std::size_t Bins, bool Propagates>
+void render_light_core(const render_job& job, pass_source<C, Bins>& passes);
+template <std::size_t C, std::size_t Bins, bool Propagates>
+void render_bdpt_core(const render_job& job, pass_source<C, Bins>& passes);
+/// @}
 
 }  // namespace iris::renderer::detail

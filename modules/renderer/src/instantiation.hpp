@@ -1,37 +1,34 @@
 #pragma once
-// The definitions of the functions dispatch.hpp declares (internal to iris::renderer):
-// included by the translation units that instantiate them (presets.cpp.in, bsdf_only.cpp).
+// A preset's own code (internal to iris::renderer): its passes — p_α at each pass's α, behind
+// `pass_source` — and the functions of the dispatch table, which hand them to the shared
+// instantiation of its shape (core.hpp). Included by the units presets.cpp.in generates.
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <utility>
 
-#include "iris/render/bdpt.hpp"
-#include "iris/render/bsdf_only.hpp"
-#include "iris/render/camera.hpp"
-#include "iris/render/integrator.hpp"
-#include "iris/render/light_tracer.hpp"
-#include "iris/render/lights.hpp"
+#include "iris/render/sample_policy.hpp"
 #include "iris/sampling/presets.hpp"
 #include "dispatch.hpp"
-#include "light_loop.hpp"
-#include "render_loop.hpp"
 #include "windows.hpp"
 
 namespace iris::renderer::detail {
 
 /// \brief A preset's configuration for one render, and p_α for pass i — rebuilt only when α
-/// changes (every pass until N_thold, then never).
+/// changes (every pass until N_thold, then never) — as the shared instantiations read it.
 template <class Preset>
-class preset_passes {
+class preset_passes final : public pass_source<Preset::wavelength_count, iris::detail::bins_of<Preset>()> {
 public:
     explicit preset_passes(const render_job& job) : m_cfg(parameters(job)) {}
-    std::pair<float, const typename Preset::distribution_type&> operator()(int i) {
+    std::pair<float, const sample_policy<Preset::wavelength_count, iris::detail::bins_of<Preset>()>&> operator()(
+        int i) override {
         const float a = m_cfg.alpha(static_cast<std::uint64_t>(i));
         if (a != m_alpha) {
             m_dist.emplace(m_cfg.distribution(a));
+            m_policy.emplace(*m_dist);
             m_alpha = a;
         }
-        return {a, *m_dist};
+        return {a, *m_policy};
     }
 
 private:
@@ -47,6 +44,15 @@ private:
     const Preset m_cfg;
     float m_alpha = -1.0f;
     std::optional<typename Preset::distribution_type> m_dist;
+    std::optional<preset_sample_policy<Preset>> m_policy;
+};
+
+/// \brief The shared instantiation a preset runs on.
+template <class Preset>
+struct core_key_of {
+    static constexpr std::size_t C = Preset::wavelength_count;
+    static constexpr std::size_t bins = iris::detail::bins_of<Preset>();
+    static constexpr bool propagates = Preset::bias_type::propagates;
 };
 
 template <class Preset, isa I>
@@ -56,44 +62,24 @@ void render_preset(const render_job& job) {
         render_preset<Preset, isa::baseline>(job);
         return;
     } else {
-    preset_passes<Preset> passes(job);
-    const light_sampler& lights = job.lights;
-    const path_integrator<Preset> integ(job.scene, lights, job.opt.path);
-    const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
-    run_passes<I>(integ, job.tracer, cam, job.opt, passes, job.out, job.st, job.h);
+        using k = core_key_of<Preset>;
+        preset_passes<Preset> passes(job);
+        render_path_core<I, k::C, k::bins, k::propagates>(job, passes);
     }
 }
 
 template <class Preset>
 void render_light(const render_job& job) {
+    using k = core_key_of<Preset>;
     preset_passes<Preset> passes(job);
-    const light_sampler& lights = job.lights;
-    const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
-    const light_integrator<Preset> integ(job.scene, lights, cam, job.opt.path);
-    run_light_passes(integ, job.tracer, job.opt, passes, job.out, job.st, job.h);
+    render_light_core<k::C, k::bins, k::propagates>(job, passes);
 }
 
 template <class Preset>
 void render_bdpt(const render_job& job) {
+    using k = core_key_of<Preset>;
     preset_passes<Preset> passes(job);
-    const light_sampler& lights = job.lights;
-    const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
-    const bdpt_integrator<Preset> integ(job.scene, lights, cam, job.opt.path, job.opt.bdpt);
-    run_bdpt_passes(integ, job.tracer, cam, job.opt, passes, job.out, job.st, job.h);
-}
-
-/// The independent estimator: no wavelength policy (its loop's distribution is an empty
-/// placeholder).
-template <isa I>
-void render_bsdf_only(const render_job& job) {
-    job.st.isa = isa_name(isa::baseline);  // one loop: the check need not be fast
-    struct no_distribution {};
-    static constexpr no_distribution none{};
-    const bsdf_only_integrator integ(job.scene, job.opt.path);
-    const camera_rays cam(job.scene.camera, job.out.width(), job.out.height());
-    run_passes<isa::baseline>(integ, job.tracer, cam, job.opt,
-                              [&](int) { return std::pair<float, const no_distribution&>(1.0f, none); }, job.out, job.st,
-                              job.h);
+    render_bdpt_core<k::C, k::bins, k::propagates>(job, passes);
 }
 
 }  // namespace iris::renderer::detail

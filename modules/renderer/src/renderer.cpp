@@ -16,6 +16,7 @@
 #include "iris/sampling/presets.hpp"
 #include "iris/version.hpp"
 #include "iris/embree/intersector.hpp"
+#include "cores.hpp"
 #include "dispatch.hpp"
 #include "windows.hpp"
 
@@ -25,6 +26,18 @@ namespace {
 static_assert(iris::presets::size == IRIS_PRESET_COUNT,
               "the preset list changed: set IRIS_PRESET_COUNT in modules/renderer/CMakeLists.txt to its length, "
               "so that every preset is instantiated");
+
+/// \brief Is preset P's shape among the shared instantiations this build compiles?
+template <class P>
+constexpr bool core_compiled() noexcept {
+    for (const auto& k : detail::compiled_cores)
+        if (k.c == P::wavelength_count && k.bins == iris::detail::bins_of<P>() && k.propagates == P::bias_type::propagates)
+            return true;
+    return false;
+}
+static_assert([]<class... P>(type_list<P...>) { return (core_compiled<P>() && ...); }(iris::presets{}),
+              "a preset's shape (C, B-term bins, propagates) is not compiled: add it to IRIS_RENDERER_CORES in "
+              "modules/renderer/CMakeLists.txt");
 
 using detail::isa;
 using detail::render_fn;
