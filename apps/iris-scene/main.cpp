@@ -90,9 +90,13 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
                                 : std::holds_alternative<iris::cauchy_ior>(d.ior)    ? "cauchy"
                                 : std::holds_alternative<iris::sellmeier_ior>(d.ior) ? "sellmeier"
                                                                                      : "tabulated";
-            return fmt::format("dielectric {} n(550)={:.4f}{}{}", model, iris::refractive_index(d.ior, 550.0),
+            return fmt::format("dielectric {} n(550)={:.4f}{}{}{}", model, iris::refractive_index(d.ior, 550.0),
                                iris::is_dispersive(d.ior) ? " dispersive" : "",
-                               d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"));
+                               d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"),
+                               d.absorption ? fmt::format(" absorbing sigma_a(450/550/650)={:.4g}/{:.4g}/{:.4g} per unit",
+                                                          (*d.absorption)(450.0), (*d.absorption)(550.0),
+                                                          (*d.absorption)(650.0))
+                                            : std::string());
         }
         std::string operator()(const iris::material::coated& c) const {
             return fmt::format("coated eta={:g} {} thickness={:g} max_depth={}{} over {}", c.eta,
@@ -232,6 +236,7 @@ void info(const std::string& name, bool json, bool strict) {
         j["has_environment"] = f.has_environment;
         j["has_environment_map"] = f.has_environment_map;
         j["has_delta_lights"] = f.has_delta_lights;
+        j["absorbing"] = f.absorbing;
         j["emitter_spds"] = f.emitter_spds;
         j["approximated"] = iris::scene::approximations(s);
         j["load_seconds"] = l.seconds;
@@ -262,9 +267,9 @@ void info(const std::string& name, bool json, bool strict) {
     std::string spds;
     for (const auto& n : f.emitter_spds) spds += (spds.empty() ? "" : ",") + n;
     fmt::print("features     dispersive_specular={} dispersive_rough={} has_specular={} has_environment={} "
-               "has_environment_map={} has_delta_lights={} emitter_spds={}\n",
+               "has_environment_map={} has_delta_lights={} absorbing={} emitter_spds={}\n",
                f.dispersive_specular, f.dispersive_rough, f.has_specular, f.has_environment, f.has_environment_map,
-               f.has_delta_lights, spds);
+               f.has_delta_lights, f.absorbing, spds);
     fmt::print("load         {:.2f} ms\n", l.seconds * 1e3);
 }
 

@@ -34,6 +34,7 @@
 
 #include "iris/render/lights/light.hpp"
 #include "iris/render/materials/materials.hpp"
+#include "iris/render/absorption.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/render/texture.hpp"
 #include "iris/sampling/bias/bin_layout.hpp"
@@ -292,7 +293,17 @@ struct hero_tables {
     std::vector<lattice_spectrum> albedo;
     std::vector<lattice_spectrum> emission;
     std::vector<lattice_spectrum> conductor_eta, conductor_k;  ///< per material; empty unless a conductor with an index
+    std::vector<lattice_spectrum> absorption;  ///< per material; empty unless an absorbing dielectric (σ_a)
     std::uint32_t albedo_basis = 0;  ///< the first basis row of `albedo` (= the material count)
+
+    /// \brief exp(−σ_a(λ_k)·t) of a length t (possibly ∞) inside absorbing material m
+    /// (iris/render/absorption.hpp).
+    template <std::size_t N>
+    sampled_spectrum<N> transmittance(std::uint32_t m, const sampled_wavelengths<N>& wl, float t) const noexcept {
+        sampled_spectrum<N> v = absorption[m](wl);
+        for (std::size_t k = 0; k < N; ++k) v[k] = beer_lambert(v[k], t);
+        return v;
+    }
 
     /// \brief Le(λ_k) = Σ_i weight_i · table_{first+i}(λ_k) (an emitter: its table times 1, exactly).
     template <std::size_t N>
@@ -345,6 +356,11 @@ struct hero_tables {
                 conductor_eta.emplace_back();
                 conductor_k.emplace_back();
             });
+        for (const material_desc& m : scene.materials) {
+            const auto* d = std::get_if<material::dielectric>(&m);
+            if (d && d->absorption) absorption.emplace_back(*d->absorption, lo, hi);
+            else absorption.emplace_back();
+        }
         albedo_basis = static_cast<std::uint32_t>(albedo.size());
         if (has_textures(scene))
             for (const tabulated_spectrum& b : reflectance_basis()) albedo.emplace_back(b, lo, hi);
@@ -379,6 +395,7 @@ struct bin_tables {
     std::vector<spectrum> eta2;     ///< η², likewise (Fresnel at the bins reads η² and 1/η², no squaring or division)
     std::vector<spectrum> inv_eta2; ///< 1/η², likewise
     std::vector<spectrum> k;        ///< per material: a conductor's k (its η is in `eta`); empty otherwise
+    std::vector<spectrum> absorption;  ///< per material: an absorbing dielectric's σ_a; empty otherwise
     std::vector<spectrum> emission;  ///< indexed as `emission_ref` indexes them
     spectrum x_bar, y_bar, z_bar;
 
@@ -416,6 +433,11 @@ struct bin_tables {
                 }
                 k.emplace_back();
             });
+        for (const material_desc& m : scene.materials) {
+            const auto* d = std::get_if<material::dielectric>(&m);
+            if (d && d->absorption) absorption.emplace_back(lattice, *d->absorption);
+            else absorption.emplace_back();
+        }
         if (has_textures(scene))
             for (const tabulated_spectrum& b : reflectance_basis()) albedo.emplace_back(lattice, b);
         for (const tabulated_spectrum* e : emission_spectra(scene)) emission.emplace_back(lattice, *e);

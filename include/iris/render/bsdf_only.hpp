@@ -32,6 +32,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "iris/render/absorption.hpp"
 #include "iris/render/bsdf.hpp"
 #include "iris/render/frame.hpp"
 #include "iris/render/integrator.hpp"
@@ -71,8 +72,12 @@ public:
         double radiance = 0.0;
 
         std::uint32_t from_shape = no_triangle, from_prim = no_triangle;  // the triangle the ray leaves
+        std::uint32_t medium = no_medium;  // the absorbing solid the ray is in (iris/render/absorption.hpp)
         for (int depth = 0;; ++depth) {
             const auto hit = intersect_leaving(tracer, origin, dir, from_shape, from_prim, out.rays);
+            // inside an absorbing solid: σ_a(λ) from the scene's own table
+            const double sigma = medium != no_medium ? absorption_of(m_scene, medium)(static_cast<double>(lambda)) : 0.0;
+            if (!hit && sigma > 0.0) break;  // an infinite length of absorbing material
             if (!hit) {
                 if (m_scene.environment) radiance += static_cast<double>(beta) * environment(dir, lambda);
                 break;
@@ -81,6 +86,7 @@ public:
             const auto si = make_interaction(m_scene, *hit, dir);
             if (!si) break;  // degenerate triangle
             const glm::vec3& wo = si->wo;
+            if (sigma > 0.0) beta *= static_cast<float>(std::exp(-sigma * static_cast<double>(glm::distance(origin, si->sp.p))));
             if (shape.emitter) {
                 const emitter_desc& em = m_scene.emitters[*shape.emitter];
                 const float c = glm::dot(si->ng, wo);
@@ -101,6 +107,11 @@ public:
                 if (rng.next() >= survive) break;
                 beta /= survive;
             }
+            // the medium after a dielectric boundary: its inside (the back of n_g) if it absorbs,
+            // else the clear outside; other surfaces keep it (written here, not shared with the
+            // path tracer's `medium_after`)
+            if (const auto* d = std::get_if<material::dielectric>(&mat))
+                medium = d->absorption && glm::dot(bs->wi, si->ng) < 0.0f ? shape.material : no_medium;
             origin = si->sp.p;  // not offset: see intersect_leaving
             dir = bs->wi;
             from_shape = hit->shape;

@@ -42,6 +42,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "iris/render/absorption.hpp"
 #include "iris/render/bins.hpp"
 #include "iris/render/materials/materials.hpp"
 #include "iris/render/propagation.hpp"
@@ -118,6 +119,11 @@ public:
             rng.start_bounce(depth);  // the bounce's slots (random.hpp), whatever was skipped before
             const auto hit = tracer.intersect(origin, dir, std::numeric_limits<float>::infinity());
             ++out.rays;
+            if (hp.medium != no_medium) {  // inside an absorbing solid (iris/render/absorption.hpp)
+                const float t = hit ? hit->t : std::numeric_limits<float>::infinity();
+                hp.beta *= m_hero.transmittance(hp.medium, wl, t);
+                bterm.attenuate(hp.medium, t);
+            }
             if (!hit) {
                 if (m_lights.has_environment()) collect_environment(dir, wl, hp, bterm);
                 break;
@@ -140,7 +146,7 @@ public:
                 emission_ref albedo;  // the reflectance at the hit: the material's table, or a texel's basis mix
                 const sampled_spectra<C> hero = m_hero.at_vertex(bxdf, m_scene, shape.material, vx.uv, wl, albedo);
                 bterm.enter(bxdf, shape.material, albedo);
-                if constexpr (!B::delta) next_event(tracer, bxdf, vx, lo, wl, hero, hp, bterm, rng, out);
+                if constexpr (!B::delta) next_event(tracer, bxdf, vx, shape.material, lo, wl, hero, hp, bterm, rng, out);
                 // BSDF sampling with the hero wavelength; the bins follow it (the sample stays
                 // in here: returning it through the visit cost a copy with store-forwarding stalls)
                 const float u_lobe = rng.next();
@@ -152,6 +158,7 @@ public:
                 return true;
             });
             if (!scattered) break;
+            hp.medium = medium_after(m_scene, shape.material, vx.ng, wi, hp.medium);
             if (depth + 1 >= m_settings.rr_start_depth && !survives_roulette(hp, bterm, rng)) break;
             origin = offset_ray_origin(vx.sp, vx.ng, wi);
             dir = wi;
@@ -193,6 +200,7 @@ private:
         float eta_scale = 1.0f;
         bool prev_delta = true;  ///< the camera ray: no light-sampling strategy competes
         float prev_pdf = 0.0f;
+        std::uint32_t medium = no_medium;  ///< the absorbing solid the ray is in (iris/render/absorption.hpp)
 
         void scatter(const bsdf_sample<C>& s) noexcept {
             const float p0 = s.pdf[0];
@@ -250,9 +258,9 @@ private:
     /// its weight is over the wavelengths alone (p_b = 0 in the same formula), and the BxDF's
     /// pdf is not evaluated. `lo` is ωo in the shading frame.
     template <Intersector Tracer, class B, class Prop>
-    void next_event(const Tracer& tracer, const B& bxdf, const surface_interaction& vx, const glm::vec3& lo,
-                    const sampled_wavelengths<C>& wl, const sampled_spectra<C>& hero, hero_path& hp, Prop& bterm,
-                    sample_stream& rng, path_sample& out) const noexcept {
+    void next_event(const Tracer& tracer, const B& bxdf, const surface_interaction& vx, std::uint32_t material,
+                    const glm::vec3& lo, const sampled_wavelengths<C>& wl, const sampled_spectra<C>& hero, hero_path& hp,
+                    Prop& bterm, sample_stream& rng, path_sample& out) const noexcept {
         if (m_lights.empty()) return;
         const glm::vec2 u_point = rng.next2();  // slots in the order of random.hpp's layout
         const float u_choice = rng.next();
@@ -270,8 +278,18 @@ private:
         if (tracer.occluded(ls->shadow.origin, ls->shadow.direction, ls->shadow.t_max)) return;
         const float pl = ls->pdf;
         const sampled_spectrum<C>& pb = fb.pdf;
-        hp.lc += hp.beta * f * m_hero.emitted(ls->le, wl) / (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
-        bterm.template light<B>(ls->le, balance_heuristic(pl, pb[0]), pl);
+        const float w_light = balance_heuristic(pl, pb[0]);
+        const std::uint32_t medium = medium_after(m_scene, material, vx.ng, ls->wi, hp.medium);
+        if (medium == no_medium) {
+            hp.lc += hp.beta * f * m_hero.emitted(ls->le, wl) / (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
+            bterm.template light<B>(ls->le, w_light, pl);
+        } else {  // the shadow ray crosses absorbing material (a light inside the solid)
+            const float d = std::isfinite(ls->shadow.t_max) ? glm::length(ls->shadow.direction)
+                                                            : std::numeric_limits<float>::infinity();
+            hp.lc += hp.beta * f * m_hero.transmittance(medium, wl, d) * m_hero.emitted(ls->le, wl) /
+                     (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
+            bterm.template light_absorbed<B>(ls->le, w_light, pl, medium, d);
+        }
     }
 
     /// \brief Russian roulette on the largest remaining weight (same for every λ: MIS ratios

@@ -33,6 +33,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "iris/render/absorption.hpp"
 #include "iris/render/bins.hpp"
 #include "iris/render/lights/light.hpp"
 #include "iris/render/materials/bxdf.hpp"
@@ -61,6 +62,9 @@ struct no_propagation {
     void light(const emission_ref&, float, float) noexcept {}
     template <class B, std::size_t C>
     void follow(const B&, const glm::vec3&, const bsdf_sample<C>&) noexcept {}
+    void attenuate(std::uint32_t, float) noexcept {}
+    template <class B>
+    void light_absorbed(const emission_ref&, float, float, std::uint32_t, float) noexcept {}
     static constexpr float roulette_max(float m) noexcept { return m; }
     void survive(float) noexcept {}
     void add_xyz(xyz&) const noexcept {}
@@ -161,6 +165,34 @@ public:
         const view le = emitted(r, k);
         if constexpr (separable_bxdf<B>) add_light(m_refl, le, m_cos * k);
         else add_light(m_f, le, k);
+    }
+
+    /// \brief `light`, for a shadow ray that crosses a length d of absorbing material m: the
+    /// bins' value toward the light times exp(−σ_a(λ_b)·d) (iris/render/absorption.hpp).
+    template <class B>
+    void light_absorbed(const emission_ref& r, float w, float pl, std::uint32_t m, float d) noexcept {
+        if (!m_on) return;
+        float k = w / pl;
+        const view le = emitted(r, k);
+        const view sigma = m_t->absorption[m].at(m_bp, m_att_scratch);
+        sampled_spectrum<Bins> f;
+        for (std::size_t b = 0; b < Bins; ++b) {
+            const float fb = separable_bxdf<B> ? m_refl[b] * m_cos : m_f[b];
+            f[b] = fb * beer_lambert(sigma[b], d);
+        }
+        add_light(f, le, k);
+    }
+    /// \brief The hero's ray crossed a length t of absorbing material m: t_b ← t_b ·
+    /// exp(−σ_a(λ_b)·t).
+    void attenuate(std::uint32_t m, float t) noexcept {
+        if (!m_on) return;
+        const view sigma = m_t->absorption[m].at(m_bp, m_att_scratch);
+        float mx = 0.0f;
+        for (std::size_t b = 0; b < Bins; ++b) {
+            m_tb[b] *= beer_lambert(sigma[b], t);
+            mx = m_tb[b] > mx ? m_tb[b] : mx;
+        }
+        m_tb_max = mx;
     }
 
     /// \brief The bins follow the hero's sampled direction and lobe (`wo` and the sample's
@@ -413,6 +445,7 @@ protected:
     std::array<float, Bins> m_scratch;  ///< for emitters off the lattice (binned_spectrum::at)
     std::array<float, Bins> m_mix;      ///< an environment texel's spectrum at the bins
     mutable std::array<float, Bins> m_eta_scratch, m_eta2_scratch, m_inv_eta2_scratch, m_k_scratch;
+    std::array<float, Bins> m_att_scratch;  ///< σ_a at the bins, off the lattice
 };
 
 /// \brief The B term of one bidirectional sample (iris/render/bdpt.hpp; docs/method.md §3,

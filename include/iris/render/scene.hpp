@@ -84,10 +84,14 @@ struct diffuse {
 };
 
 /// \brief Glass-like interface. roughness = 0: smooth (specular, a delta BSDF);
-/// roughness > 0: GGX microfacet with α = roughness. Dispersive if the IOR model is.
+/// roughness > 0: GGX microfacet with α = roughness. Dispersive if the IOR model is. With
+/// `absorption`, the solid it bounds absorbs: light crossing a length t of its inside keeps
+/// exp(−σ_a(λ)·t), σ_a ≥ 0 per scene unit (Beer–Lambert; docs/method.md §8). Its inside is
+/// the side its normals point away from.
 struct dielectric {
     ior_model ior = constant_ior{1.5};
     float roughness = 0.0f;
+    std::optional<tabulated_spectrum> absorption = std::nullopt;
 };
 
 /// \brief A conductor's complex refractive index η(λ) + i·k(λ) (relative to the outside,
@@ -263,6 +267,7 @@ struct scene_features {
     bool has_environment = false;
     bool has_environment_map = false;
     bool has_delta_lights = false;     ///< point, spot or distant lights (no BSDF-only estimate)
+    bool absorbing = false;            ///< a dielectric with `absorption`
     std::vector<std::string> emitter_spds;  ///< distinct SPD names of all emitters
 
     bool dispersive() const noexcept { return dispersive_specular || dispersive_rough; }
@@ -302,6 +307,7 @@ struct scene_desc {
         for (std::size_t i = 0; i < materials.size(); ++i) {
             if (!used[i]) continue;
             if (const auto* d = std::get_if<material::dielectric>(&materials[i])) {
+                f.absorbing |= d->absorption.has_value();
                 const bool disp = is_dispersive(d->ior);
                 if (d->roughness >= smooth_alpha) f.dispersive_rough |= disp;
                 else {

@@ -169,6 +169,27 @@ texture_spec read_texture(const reader& r, const std::filesystem::path& base_dir
     return t;
 }
 
+/// A dielectric's absorption (docs/scene-format.md): `absorption` σ_a per scene unit, or a
+/// `transmittance` T (a reflectance-like spectrum in (0, 1]) kept over `transmittance_depth`
+/// scene units, σ_a = −ln T / depth (T below 1e-6 is taken as 1e-6: σ_a stays finite).
+std::optional<tabulated_spectrum> read_dielectric_absorption(const reader& r) {
+    const bool sigma = r.has("absorption"), colour = r.has("transmittance"), depth = r.has("transmittance_depth");
+    if (sigma && (colour || depth))
+        r.at(colour ? "transmittance" : "transmittance_depth")
+            .fail("give either 'absorption' or 'transmittance' with 'transmittance_depth', not both");
+    if (sigma) return detail::read_absorption(r.at("absorption"));
+    if (colour != depth)
+        r.at(colour ? "transmittance" : "transmittance_depth")
+            .fail(colour ? "a 'transmittance' needs the 'transmittance_depth' (scene units) it is kept over"
+                         : "a 'transmittance_depth' needs the 'transmittance' kept over it");
+    if (!colour) return std::nullopt;
+    const tabulated_spectrum t = detail::read_reflectance(r.at("transmittance"));
+    const double dist = r.at("transmittance_depth").number_in(0.0, 1e9, true, false, "a depth in scene units");
+    std::vector<double> lambda(t.wavelengths().begin(), t.wavelengths().end()), sigma_a;
+    for (double v : t.values()) sigma_a.push_back(-std::log(std::max(v, 1e-6)) / dist);
+    return tabulated_spectrum(std::move(lambda), std::move(sigma_a), outside::clamp);
+}
+
 material_desc read_material(const reader& r, const detail::domain& d, const std::filesystem::path& base_dir,
                             std::vector<texture_spec>& textures) {
     if (!r.is_object()) r.fail("expected a material object, got " + describe(r.value()));
@@ -186,11 +207,12 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
         return material::diffuse{detail::read_reflectance(refl)};
     }
     if (type == "dielectric") {
-        r.expect_object({"type", "ior", "roughness"});
+        r.expect_object({"type", "ior", "roughness", "absorption", "transmittance", "transmittance_depth"});
         material::dielectric m;
         m.ior = detail::read_ior(r.at("ior"), d);
         if (r.has("roughness"))
             m.roughness = static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness"));
+        m.absorption = read_dielectric_absorption(r);
         return m;
     }
     if (type == "conductor") {

@@ -105,6 +105,10 @@ struct material_writer {
         return "\"string type\" [ \"diffuse\" ]\n    \"spectrum reflectance\" " + domain_spectrum(s, d.reflectance);
     }
     std::string operator()(const material::dielectric& d) const {
+        if (d.absorption)
+            throw error(s.name, 0, "", "material '" + name +
+                                           "' absorbs (an 'absorption'): pbrt-v4 expresses that as a medium inside the "
+                                           "dielectric, which iris-scene export --pbrt does not write yet");
         std::string out = "\"string type\" [ \"dielectric\" ]\n    ";
         if (!is_dispersive(d.ior)) out += "\"float eta\" [ " + num(refractive_index(d.ior, 550.0)) + " ]";
         else {

@@ -49,8 +49,11 @@ private:
 template <class T>
 void hash_material(hasher& h, const T& x) {
     if constexpr (std::is_same_v<T, material::dielectric>) {
+        static_assert(sizeof(T) == sizeof(ior_model) + 8 + sizeof(std::optional<tabulated_spectrum>),
+                      "fingerprint: hash every field of material::dielectric");  // (roughness, padded)
         h(x.roughness);
         h(x.ior.index());
+        if (x.absorption) h(*x.absorption);  // (only when present: older scenes keep their fingerprints)
         std::visit(
             [&](const auto& n) {
                 using N = std::decay_t<decltype(n)>;

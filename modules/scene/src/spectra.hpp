@@ -21,6 +21,9 @@ struct domain {
 /// \brief A reflectance in [0, 1]: number, {"srgb"}, {"linear_srgb"} or a table.
 tabulated_spectrum read_reflectance(const reader& r);
 
+/// \brief An absorption coefficient σ_a ≥ 0 per scene unit: a number (grey) or a table.
+tabulated_spectrum read_absorption(const reader& r);
+
 /// \brief An emission SPD and the name the feature summary reports for it.
 struct named_spd {
     std::string name;
