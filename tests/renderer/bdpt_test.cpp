@@ -30,6 +30,7 @@
 #include "box_distribution.hpp"
 #include "region_stats.hpp"
 #include "test_scenes.hpp"
+#include "oracle_presets.hpp"
 
 namespace {
 
@@ -123,7 +124,7 @@ iris::renderer::options bdpt_options(const char* preset, int spp, std::uint64_t 
 // Russian roulette on each. Family: the presets, α = 0.001.
 TEST(Bdpt, EveryPresetKeepsTheFurnaceAtFive) {
     const auto s = iris::test::furnace(0.8);
-    const auto presets = iris::renderer::presets();
+    const auto presets = iris_test::oracle_presets();
     const double z = iris_test::sidak_z(0.001, presets.size());
     double worst = 0.0;
     for (const auto& p : presets) {

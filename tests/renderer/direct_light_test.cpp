@@ -27,6 +27,7 @@
 #include <iris/spectrum/color.hpp>
 
 #include "region_stats.hpp"
+#include "oracle_presets.hpp"
 
 namespace {
 
@@ -193,7 +194,7 @@ std::vector<lamp> lamps() {
 namespace {
 void every_preset_matches_the_exact_irradiance(const std::string& estimator, const std::vector<lamp>& all, int nthold,
                                                int passes) {
-    const auto presets = iris::renderer::presets();
+    const auto presets = iris_test::oracle_presets();
     const int spp_unbiased = passes, spp_biased = nthold + passes;
     constexpr std::size_t min_pixels = 8;
     const double z_max = iris_test::sidak_z(0.001, all.size() * presets.size() * zones * 3);

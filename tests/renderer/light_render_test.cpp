@@ -42,6 +42,7 @@
 #include <iris/spectrum/rgb_upsampling.hpp>
 
 #include "region_stats.hpp"
+#include "oracle_presets.hpp"
 
 namespace {
 
@@ -90,11 +91,12 @@ struct preset_run {
     int from = 0;  ///< the first pass judged (presets biased before N_thold: after it)
 };
 
-/// \brief Every preset, N_thold = `nthold`, `spp` judged passes (4 × as many for C = 1,
-/// whose one wavelength makes even Y noisy), rendered by `estimator`.
+/// \brief Every preset's shape (`oracle_presets`: one preset per shared instantiation; all
+/// fifteen with IRIS_TEST_EVERY_PRESET=1), N_thold = `nthold`, `spp` judged passes (4 × as
+/// many for C = 1, whose one wavelength makes even Y noisy), rendered by `estimator`.
 std::vector<preset_run> every_preset(int nthold, int spp, std::uint64_t seed, const std::string& estimator = "nee-mis") {
     std::vector<preset_run> v;
-    for (const auto& p : iris::renderer::presets()) {
+    for (const auto& p : iris_test::oracle_presets()) {
         preset_run r;
         r.name = estimator == "nee-mis" ? p.name : p.name + " (" + estimator + ")";
         r.opt.preset = p.name;

@@ -38,6 +38,7 @@
 
 #include "box_distribution.hpp"
 #include "region_stats.hpp"
+#include "oracle_presets.hpp"
 
 namespace {
 
@@ -262,7 +263,7 @@ TEST(LightTracer, MatchesTheExactRadianceOfAPlaneUnderAPointLight) {
 // Family: presets × 6 rings × 3 channels, α = 0.001.
 TEST(LightTracer, EveryPresetMatchesTheExactRadianceUnderAPointLight) {
     const auto t = make_point_light_plane();
-    const auto presets = iris::renderer::presets();
+    const auto presets = iris_test::oracle_presets();
     const double z_max = iris_test::sidak_z(0.001, presets.size() * t.exact.size() * 3);
     double power = 0.0;
     for (const auto& p : presets) {
