@@ -67,6 +67,11 @@ loaded load(const std::string& name_or_path, bool strict = false) {
     }
 }
 
+std::string film_summary(const std::optional<iris::material::thin_film>& f) {
+    if (!f) return {};
+    return fmt::format(" film={:g}nm n(550)={:.4f}", f->thickness_nm, iris::refractive_index(f->ior, 550.0));
+}
+
 std::string material_summary(const iris::scene_desc& s, const iris::material_desc& m) {
     struct summary {  // one call per alternative: a new material does not compile without its own
         const iris::scene_desc& s;
@@ -82,21 +87,22 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
         std::string operator()(const iris::material::conductor& c) const {
             const std::string rough = c.roughness > 0.0f ? fmt::format(" roughness={:g}", c.roughness) : std::string(" smooth");
             if (!c.ior) return "conductor" + rough;
-            return fmt::format("conductor {} eta(550)={:.4g} k(550)={:.4g} R0(550)={:.4f}{}", c.ior->name, c.ior->eta(550.0),
-                               c.ior->k(550.0), c.reflectance(550.0), rough);
+            return fmt::format("conductor {} eta(550)={:.4g} k(550)={:.4g} R0(550)={:.4f}{}{}", c.ior->name, c.ior->eta(550.0),
+                               c.ior->k(550.0), c.reflectance(550.0), rough, film_summary(c.film));
         }
         std::string operator()(const iris::material::dielectric& d) const {
             const char* model = std::holds_alternative<iris::constant_ior>(d.ior)  ? "constant"
                                 : std::holds_alternative<iris::cauchy_ior>(d.ior)    ? "cauchy"
                                 : std::holds_alternative<iris::sellmeier_ior>(d.ior) ? "sellmeier"
                                                                                      : "tabulated";
-            return fmt::format("dielectric {} n(550)={:.4f}{}{}{}", model, iris::refractive_index(d.ior, 550.0),
+            return fmt::format("dielectric {} n(550)={:.4f}{}{}{}{}", model, iris::refractive_index(d.ior, 550.0),
                                iris::is_dispersive(d.ior) ? " dispersive" : "",
                                d.roughness > 0.0f ? fmt::format(" roughness={:g}", d.roughness) : std::string(" smooth"),
                                d.absorption ? fmt::format(" absorbing sigma_a(450/550/650)={:.4g}/{:.4g}/{:.4g} per unit",
                                                           (*d.absorption)(450.0), (*d.absorption)(550.0),
                                                           (*d.absorption)(650.0))
-                                            : std::string());
+                                            : std::string(),
+                               film_summary(d.film));
         }
         std::string operator()(const iris::material::coated& c) const {
             return fmt::format("coated eta={:g} {} thickness={:g} max_depth={}{} over {}", c.eta,
@@ -107,6 +113,7 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
     };
     return std::visit(summary{s}, m);
 }
+
 
 std::string light_summary(const iris::light_desc& l) {
     struct summary {  // one call per alternative: a new light does not compile without its own
@@ -237,6 +244,7 @@ void info(const std::string& name, bool json, bool strict) {
         j["has_environment_map"] = f.has_environment_map;
         j["has_delta_lights"] = f.has_delta_lights;
         j["absorbing"] = f.absorbing;
+        j["thin_film"] = f.thin_film;
         j["emitter_spds"] = f.emitter_spds;
         j["approximated"] = iris::scene::approximations(s);
         j["load_seconds"] = l.seconds;
@@ -267,9 +275,9 @@ void info(const std::string& name, bool json, bool strict) {
     std::string spds;
     for (const auto& n : f.emitter_spds) spds += (spds.empty() ? "" : ",") + n;
     fmt::print("features     dispersive_specular={} dispersive_rough={} has_specular={} has_environment={} "
-               "has_environment_map={} has_delta_lights={} absorbing={} emitter_spds={}\n",
+               "has_environment_map={} has_delta_lights={} absorbing={} thin_film={} emitter_spds={}\n",
                f.dispersive_specular, f.dispersive_rough, f.has_specular, f.has_environment, f.has_environment_map,
-               f.has_delta_lights, f.absorbing, spds);
+               f.has_delta_lights, f.absorbing, f.thin_film, spds);
     fmt::print("load         {:.2f} ms\n", l.seconds * 1e3);
 }
 

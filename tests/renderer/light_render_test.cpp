@@ -42,6 +42,7 @@
 #include <iris/spectrum/rgb_upsampling.hpp>
 
 #include "region_stats.hpp"
+#include "thin_film_oracle.hpp"
 #include "oracle_presets.hpp"
 
 namespace {
@@ -721,6 +722,40 @@ TEST(ConductorRender, EveryPresetUnderBdptReflectsTheExactFresnelOfAGoldPlane) {
     expect_conductor_plane(R"({"type": "conductor", "metal": "Au"})",
                            [](const iris::scene_desc& s, double c) { return fresnel_xyz(s, gold_index(s), c); }, 601, 512,
                            "gold plane", "bdpt");
+}
+
+namespace {
+
+/// \brief XYZ of the environment reflected by a film (index `n_film`, `d_nm` thick) on the
+/// plane's metal at incidence cos = x: `fresnel_xyz` with the film's reflectance from the
+/// matrix oracle (tests/render/thin_film_oracle.hpp; the metal's N = η − ik in its convention).
+std::array<double, 3> film_xyz(const iris::scene_desc& s, double n_film, double d_nm, double x) {
+    const auto& ior = gold_index(s);
+    std::array<double, 3> v{};
+    constexpr double step = 0.1;
+    for (double l = s.lambda_min + 0.5 * step; l < s.lambda_max; l += step) {
+        const iris_test::cd base(ior.eta(l), -ior.k(l));
+        const double r = iris_test::matrix_method(1.0, n_film, d_nm, base, std::sqrt(std::max(0.0, 1.0 - x * x)), l).r;
+        const double e = r * s.environment->radiance(static_cast<float>(l)) * step;
+        v[0] += e * iris::cie::x_bar(l);
+        v[1] += e * iris::cie::y_bar(l);
+        v[2] += e * iris::cie::z_bar(l);
+    }
+    for (auto& c : v) c /= iris::cie::y_integral;
+    return v;
+}
+
+}  // namespace
+
+// A gold plane under a 120 nm film of index 2.2 (a titania-like layer: interference colours
+// that change with the view angle) reflects R_film(θ, λ)·L(λ): the gold plane's test with the
+// film's exact reflectance from the independent matrix oracle. Every preset's hero (the film's
+// Airy sum at C wavelengths, MIS over their probabilities) and B term (80 film reflectances
+// per vertex).
+TEST(ThinFilmRender, EveryPresetReflectsTheExactInterferenceColoursOfAFilmOnGold) {
+    expect_conductor_plane(R"({"type": "conductor", "metal": "Au", "film": {"thickness_nm": 120, "ior": 2.2}})",
+                           [](const iris::scene_desc& s, double c) { return film_xyz(s, 2.2, 120.0, c); }, 601, 512,
+                           "filmed gold plane");
 }
 
 namespace {

@@ -335,6 +335,11 @@ struct hero_tables {
                 out.index = conductor_eta[m](wl);
                 out.kappa = conductor_k[m](wl);
             }
+        if constexpr (reads_film_v<B>)
+            if (const material::thin_film* f = bxdf.film()) {
+                for (std::size_t k = 0; k < N; ++k) out.lambda[k] = wl[k];
+                out.film_index = detail::etas(f->ior, wl);
+            }
         return out;
     }
 
@@ -383,7 +388,8 @@ private:
 };
 
 /// \brief Every spectrum the B term reads, made once per render: per material its
-/// reflectance or its index of refraction (as its BxDF `reads_albedo` or `reads_eta`), per emitter its
+/// reflectance or its index of refraction (as its BxDF `reads_albedo` or `reads_eta`), a thin
+/// film's index and the bins' λ (for the film's phase), per emitter its
 /// emission tables (`emission_spectra`), and the CIE 1931 matching functions (their 1 nm tables).
 template <std::size_t Bins>
 struct bin_tables {
@@ -397,11 +403,14 @@ struct bin_tables {
     std::vector<spectrum> k;        ///< per material: a conductor's k (its η is in `eta`); empty otherwise
     std::vector<spectrum> absorption;  ///< per material: an absorbing dielectric's σ_a; empty otherwise
     std::vector<spectrum> emission;  ///< indexed as `emission_ref` indexes them
+    std::vector<spectrum> film_eta;  ///< per material: a thin film's index; empty otherwise
+    spectrum lambda;                 ///< λ_b itself (a film's phase reads it)
     spectrum x_bar, y_bar, z_bar;
 
     bin_tables() = default;
     explicit bin_tables(const scene_desc& scene)
         : lattice(scene.lambda_min, scene.lambda_max),
+          lambda(lattice, [](double l) { return l; }),
           x_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::x_bar)),
           y_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::y_bar)),
           z_bar(lattice, tabulated_spectrum::uniform(cie::cmf_lambda_min, 1.0, data::cie1931::z_bar)) {
@@ -437,6 +446,14 @@ struct bin_tables {
             const auto* d = std::get_if<material::dielectric>(&m);
             if (d && d->absorption) absorption.emplace_back(lattice, *d->absorption);
             else absorption.emplace_back();
+            visit_bxdf(m, [&](const auto& b) {
+                if constexpr (reads_film_v<std::remove_cvref_t<decltype(b)>>)
+                    if (const material::thin_film* f = b.film()) {
+                        film_eta.emplace_back(lattice, [f](double l) { return refractive_index(f->ior, l); });
+                        return;
+                    }
+                film_eta.emplace_back();
+            });
         }
         if (has_textures(scene))
             for (const tabulated_spectrum& b : reflectance_basis()) albedo.emplace_back(lattice, b);

@@ -324,7 +324,8 @@ protected:
     using view = typename binned_spectrum<Bins>::view;
 
     /// \brief The current material's spectra at the bins, as a BxDF reads them (bxdf.hpp):
-    /// the reflectance read by `enter`, views of η, η², 1/η² on the lattice.
+    /// the reflectance read by `enter`, views of η, η², 1/η² on the lattice, and for a thin
+    /// film λ_b itself and the film's index.
     struct bin_spectra {
         const propagation& p;
         const sampled_spectrum<Bins>& albedo() const noexcept { return p.m_refl; }
@@ -332,8 +333,11 @@ protected:
         view eta2() const { return p.m_t->eta2[p.m_material].at(p.m_bp, p.m_eta2_scratch); }
         view inv_eta2() const { return p.m_t->inv_eta2[p.m_material].at(p.m_bp, p.m_inv_eta2_scratch); }
         view k() const { return p.m_t->k[p.m_material].at(p.m_bp, p.m_k_scratch); }
+        view wavelength() const { return p.m_t->lambda.at(p.m_bp, p.m_film_scratch); }
+        view film_eta() const { return p.m_t->film_eta[p.m_material].at(p.m_bp, p.m_film_scratch); }
     };
     bin_spectra spectra() const noexcept { return {*this}; }
+    static_assert(film_source<bin_spectra>, "the bins must give a film's λ_b and index (materials/bxdf.hpp)");
 
     /// \brief Le at the bins as a view, and the scale `k` multiplied by what the view does
     /// not hold: an emitter's table and its weight (× 1 is exact, so an area light costs what
@@ -445,6 +449,7 @@ protected:
     std::array<float, Bins> m_scratch;  ///< for emitters off the lattice (binned_spectrum::at)
     std::array<float, Bins> m_mix;      ///< an environment texel's spectrum at the bins
     mutable std::array<float, Bins> m_eta_scratch, m_eta2_scratch, m_inv_eta2_scratch, m_k_scratch;
+    mutable std::array<float, Bins> m_film_scratch;  ///< never written: λ and a film's index are on the lattice
     std::array<float, Bins> m_att_scratch;  ///< σ_a at the bins, off the lattice
 };
 

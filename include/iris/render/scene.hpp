@@ -76,6 +76,17 @@ inline constexpr float smooth_alpha = 1e-3f;
 
 namespace material {
 
+/// \brief A thin dielectric film on a surface (soap, oil, an anti-reflection or oxide
+/// layer): `thickness_nm` ∈ (0, 10⁵] nanometres of a lossless, non-absorbing layer of index
+/// `ior` (relative to the outside, ≥ 1, dispersive or not). Its reflectance is the exact
+/// Airy sum of the light reflected back and forth inside the film, with the phase each
+/// round trip adds, per wavelength and polarisation (docs/method.md §9): the colours of
+/// interference. It changes how much is reflected and transmitted, not where light goes.
+struct thin_film {
+    double thickness_nm = 500.0;
+    ior_model ior = constant_ior{1.33};
+};
+
 /// \brief Lambertian reflector with spectral albedo in [0, 1]: `reflectance`, or, with
 /// `texture`, the image `scene_desc::textures[*texture]` looked up at the hit's uv.
 struct diffuse {
@@ -87,11 +98,14 @@ struct diffuse {
 /// roughness > 0: GGX microfacet with α = roughness. Dispersive if the IOR model is. With
 /// `absorption`, the solid it bounds absorbs: light crossing a length t of its inside keeps
 /// exp(−σ_a(λ)·t), σ_a ≥ 0 per scene unit (Beer–Lambert; docs/method.md §8). Its inside is
-/// the side its normals point away from.
+/// the side its normals point away from. With `film`, a thin film on its outside face
+/// replaces the bare interface's Fresnel reflectance R by the film's (transmission 1 − R: the
+/// film is lossless), the same from both sides.
 struct dielectric {
     ior_model ior = constant_ior{1.5};
     float roughness = 0.0f;
     std::optional<tabulated_spectrum> absorption = std::nullopt;
+    std::optional<thin_film> film = std::nullopt;
 };
 
 /// \brief A conductor's complex refractive index η(λ) + i·k(λ) (relative to the outside,
@@ -104,11 +118,14 @@ struct conductor_ior {
 /// \brief A metal (or mirror): with `ior`, the exact Fresnel reflectance of a conductor of
 /// complex index η + ik at every angle; without it, the angle-independent spectral
 /// `reflectance` (an idealised mirror). roughness = 0: a perfect specular reflector (a
-/// delta BSDF); roughness > 0: GGX microfacet reflection with α = roughness.
+/// delta BSDF); roughness > 0: GGX microfacet reflection with α = roughness. With `film`
+/// (only with `ior`, and not as a coat's base), a thin film on the metal: the film-on-metal
+/// reflectance (docs/method.md §9) replaces the bare metal's Fresnel.
 struct conductor {
     tabulated_spectrum reflectance;
     std::optional<conductor_ior> ior = std::nullopt;
     float roughness = 0.0f;
+    std::optional<thin_film> film = std::nullopt;
 };
 
 /// \brief A base under a clear dielectric coat (pbrt-v4's `coateddiffuse` and
@@ -268,6 +285,7 @@ struct scene_features {
     bool has_environment_map = false;
     bool has_delta_lights = false;     ///< point, spot or distant lights (no BSDF-only estimate)
     bool absorbing = false;            ///< a dielectric with `absorption`
+    bool thin_film = false;            ///< a dielectric or conductor with a `film`
     std::vector<std::string> emitter_spds;  ///< distinct SPD names of all emitters
 
     bool dispersive() const noexcept { return dispersive_specular || dispersive_rough; }
@@ -308,6 +326,7 @@ struct scene_desc {
             if (!used[i]) continue;
             if (const auto* d = std::get_if<material::dielectric>(&materials[i])) {
                 f.absorbing |= d->absorption.has_value();
+                f.thin_film |= d->film.has_value();
                 const bool disp = is_dispersive(d->ior);
                 if (d->roughness >= smooth_alpha) f.dispersive_rough |= disp;
                 else {
@@ -316,6 +335,7 @@ struct scene_desc {
                 }
             } else if (const auto* c = std::get_if<material::conductor>(&materials[i])) {
                 f.has_specular |= c->roughness < smooth_alpha;
+                f.thin_film |= c->film.has_value();
             } else if (const auto* k = std::get_if<material::coated>(&materials[i])) {
                 f.has_specular |= k->roughness < smooth_alpha || k->eta == 1.0f;
             }

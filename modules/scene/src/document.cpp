@@ -51,8 +51,8 @@ constexpr long long max_resolution = 16384;
 constexpr double max_luminance = 1e12;
 constexpr double max_power = 1e15;
 
-constexpr std::array shape_types{shape_type::box,         shape_type::cube, shape_type::prism,
-                                 shape_type::hollow_cube, shape_type::quad, shape_type::mesh};
+constexpr std::array shape_types{shape_type::box,  shape_type::cube, shape_type::prism, shape_type::hollow_cube,
+                                 shape_type::quad, shape_type::mesh, shape_type::sphere};
 
 glm::vec3 read_point(const reader& r, std::string_view what) {
     r.expect_array(3, what);
@@ -190,6 +190,18 @@ std::optional<tabulated_spectrum> read_dielectric_absorption(const reader& r) {
     return tabulated_spectrum(std::move(lambda), std::move(sigma_a), outside::clamp);
 }
 
+/// A thin film (docs/scene-format.md): {"thickness_nm": d, "ior": n} — any index form of a
+/// dielectric's `ior`.
+material::thin_film read_film(const reader& r, const detail::domain& d) {
+    if (!r.is_object())
+        r.fail("expected a thin film {\"thickness_nm\": nanometres, \"ior\": index}, got " + describe(r.value()));
+    r.expect_object({"thickness_nm", "ior"});
+    material::thin_film f;
+    f.thickness_nm = r.at("thickness_nm").number_in(0.0, 1e5, true, false, "a film thickness in nanometres");
+    f.ior = detail::read_ior(r.at("ior"), d);
+    return f;
+}
+
 material_desc read_material(const reader& r, const detail::domain& d, const std::filesystem::path& base_dir,
                             std::vector<texture_spec>& textures) {
     if (!r.is_object()) r.fail("expected a material object, got " + describe(r.value()));
@@ -207,16 +219,17 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
         return material::diffuse{detail::read_reflectance(refl)};
     }
     if (type == "dielectric") {
-        r.expect_object({"type", "ior", "roughness", "absorption", "transmittance", "transmittance_depth"});
+        r.expect_object({"type", "ior", "roughness", "absorption", "transmittance", "transmittance_depth", "film"});
         material::dielectric m;
         m.ior = detail::read_ior(r.at("ior"), d);
         if (r.has("roughness"))
             m.roughness = static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness"));
         m.absorption = read_dielectric_absorption(r);
+        if (r.has("film")) m.film = read_film(r.at("film"), d);
         return m;
     }
     if (type == "conductor") {
-        r.expect_object({"type", "reflectance", "metal", "eta", "k", "roughness"});
+        r.expect_object({"type", "reflectance", "metal", "eta", "k", "roughness", "film"});
         const float roughness =
             r.has("roughness") ? static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness")) : 0.0f;
         if (auto ior = detail::read_conductor_ior(r)) {
@@ -231,8 +244,11 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
             material::conductor m{tabulated_spectrum(std::move(lambda), std::move(value), outside::clamp)};
             m.ior = std::move(ior);
             m.roughness = roughness;
+            if (r.has("film")) m.film = read_film(r.at("film"), d);
             return m;
         }
+        if (r.has("film"))
+            r.at("film").fail("a film on a conductor needs its complex index ('metal', or 'eta' and 'k'), not a 'reflectance'");
         material::conductor m{r.has("reflectance") ? detail::read_reflectance(r.at("reflectance"))
                                                     : tabulated_spectrum({360.0, 830.0}, {1.0, 1.0}, outside::clamp)};
         m.roughness = roughness;
@@ -249,8 +265,10 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
         material::coated m{material::diffuse{}};
         material_desc base = read_material(b, d, base_dir, textures);
         if (auto* diffuse = std::get_if<material::diffuse>(&base)) m.base = std::move(*diffuse);
-        else if (auto* conductor = std::get_if<material::conductor>(&base)) m.base = std::move(*conductor);
-        else b.fail("a coat's base must be a diffuse, conductor or mirror material");
+        else if (auto* conductor = std::get_if<material::conductor>(&base)) {
+            if (conductor->film) b.at("film").fail("a coat's conductor base cannot carry a thin film (not implemented)");
+            m.base = std::move(*conductor);
+        } else b.fail("a coat's base must be a diffuse, conductor or mirror material");
         if (r.has("eta")) m.eta = static_cast<float>(r.at("eta").number_in(1.0, 4.0, false, false, "the coat's index of refraction"));
         if (r.has("roughness"))
             m.roughness = static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness"));
@@ -644,8 +662,11 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
                 r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "file"});
                 sh.file = resolve_mesh(r.at("file"), base_dir);
                 break;
-            case shape_type::triangles:
             case shape_type::sphere:
+                r.expect_object({"name", "type", "material", "emitter", "transform", "flip", "radius"});
+                sh.size = glm::vec3(read_size(r.at("radius")));
+                break;
+            case shape_type::triangles:
             case shape_type::disk:
             case shape_type::subdivision:
                 break;  // a pbrt-v4 file's shapes: not in `shape_types`, never read from JSON

@@ -109,6 +109,8 @@ struct material_writer {
             throw error(s.name, 0, "", "material '" + name +
                                            "' absorbs (an 'absorption'): pbrt-v4 expresses that as a medium inside the "
                                            "dielectric, which iris-scene export --pbrt does not write yet");
+        if (d.film)
+            throw error(s.name, 0, "", "material '" + name + "' has a thin 'film', which pbrt-v4 has no material for");
         std::string out = "\"string type\" [ \"dielectric\" ]\n    ";
         if (!is_dispersive(d.ior)) out += "\"float eta\" [ " + num(refractive_index(d.ior, 550.0)) + " ]";
         else {
@@ -120,6 +122,8 @@ struct material_writer {
         return out;
     }
     std::string operator()(const material::conductor& c) const {
+        if (c.film)
+            throw error(s.name, 0, "", "material '" + name + "' has a thin 'film', which pbrt-v4 has no material for");
         std::string out = "\"string type\" [ \"conductor\" ]\n    ";
         if (c.ior) {
             out += "\"spectrum eta\" " + ior_spectrum(s, c.ior->eta.wavelengths(), [&](double x) { return c.ior->eta(x); });

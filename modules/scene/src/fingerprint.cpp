@@ -45,30 +45,47 @@ private:
     fnv1a m_h;
 };
 
+/// \brief An index model's parameters (after its alternative's index).
+void hash_ior(hasher& h, const ior_model& ior) {
+    std::visit(
+        [&](const auto& n) {
+            using N = std::decay_t<decltype(n)>;
+            if constexpr (std::is_same_v<N, constant_ior>) h(n.value);
+            else if constexpr (std::is_same_v<N, cauchy_ior>) {
+                h(n.a);
+                h(n.b_um2);
+            } else if constexpr (std::is_same_v<N, sellmeier_ior>) {
+                for (double v : {n.b1, n.b2, n.b3, n.c1, n.c2, n.c3}) h(v);
+            } else {
+                static_assert(std::is_same_v<N, tabulated_ior>, "fingerprint: hash every IOR model");
+                h(n.table);
+            }
+        },
+        ior);
+}
+
+/// \brief A thin film, when there is one (only then: scenes without keep their fingerprints).
+void hash_film(hasher& h, const std::optional<material::thin_film>& f) {
+    static_assert(sizeof(material::thin_film) == sizeof(double) + sizeof(ior_model), "fingerprint: hash every field of thin_film");
+    if (!f) return;
+    h(std::string_view("film"));
+    h(f->thickness_nm);
+    h(f->ior.index());
+    hash_ior(h, f->ior);
+}
+
 /// \brief Every field of material `x` (a new field changes its size and stops the build).
 template <class T>
 void hash_material(hasher& h, const T& x) {
     if constexpr (std::is_same_v<T, material::dielectric>) {
-        static_assert(sizeof(T) == sizeof(ior_model) + 8 + sizeof(std::optional<tabulated_spectrum>),
+        static_assert(sizeof(T) == sizeof(ior_model) + 8 + sizeof(std::optional<tabulated_spectrum>) +
+                                       sizeof(std::optional<material::thin_film>),
                       "fingerprint: hash every field of material::dielectric");  // (roughness, padded)
         h(x.roughness);
         h(x.ior.index());
         if (x.absorption) h(*x.absorption);  // (only when present: older scenes keep their fingerprints)
-        std::visit(
-            [&](const auto& n) {
-                using N = std::decay_t<decltype(n)>;
-                if constexpr (std::is_same_v<N, constant_ior>) h(n.value);
-                else if constexpr (std::is_same_v<N, cauchy_ior>) {
-                    h(n.a);
-                    h(n.b_um2);
-                } else if constexpr (std::is_same_v<N, sellmeier_ior>) {
-                    for (double v : {n.b1, n.b2, n.b3, n.c1, n.c2, n.c3}) h(v);
-                } else {
-                    static_assert(std::is_same_v<N, tabulated_ior>, "fingerprint: hash every IOR model");
-                    h(n.table);
-                }
-            },
-            x.ior);
+        hash_ior(h, x.ior);
+        hash_film(h, x.film);
     } else if constexpr (std::is_same_v<T, material::diffuse>) {
         // every field: a new one changes the size and stops the build here
         static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<std::uint32_t>),
@@ -77,7 +94,8 @@ void hash_material(hasher& h, const T& x) {
         if (x.texture) h(*x.texture);  // only when present: untextured scenes keep their fingerprint
     } else if constexpr (std::is_same_v<T, material::conductor>) {
         static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<material::conductor_ior>) +
-                                       sizeof(double),  // roughness, padded
+                                       sizeof(double) +  // roughness, padded
+                                       sizeof(std::optional<material::thin_film>),
                       "fingerprint: hash every field of material::conductor");
         static_assert(sizeof(material::conductor_ior) == sizeof(std::string) + 2 * sizeof(tabulated_spectrum),
                       "fingerprint: hash every field of material::conductor_ior");
@@ -88,6 +106,7 @@ void hash_material(hasher& h, const T& x) {
             h(x.ior->k);
         }
         if (x.roughness != 0.0f) h(x.roughness);  // only when rough: smooth conductors keep their fingerprint
+        hash_film(h, x.film);
     } else if constexpr (std::is_same_v<T, material::coated>) {
         static_assert(sizeof(T) == sizeof(std::variant<material::diffuse, material::conductor>) + 4 * sizeof(float) +
                                        2 * sizeof(int),

@@ -16,6 +16,7 @@
 /// |---|---|
 /// | `delta` | a delta BSDF (mirror, smooth glass): no `f_cos`/`pdf` for a given ωi, no light sampling |
 /// | `reads_albedo`, `reads_eta` | which spectra it reads: `reflectance()` or `ior()` then exist |
+/// | `film()` (optional) | the material's thin film or null; then `wavelength()` and `film_eta()` are read where it is set |
 /// | `reads_conductor` (optional) | a conductor's η and k (`conductor_eta()`, `conductor_k()` tables, read as `eta()`, `k()`) where `has_ior()` |
 /// | `f_cos<N>(wo, wi, s)` | f(ωo, ωi, λ_k)·\|cos θi\| (0 for delta BxDFs) |
 /// | `pdf<N>(wo, wi, s)` | p(ωi \| ωo, λ_k), solid angle (0 for delta BxDFs) |
@@ -84,8 +85,11 @@ struct bsdf_sample {
 template <std::size_t N>
 struct sampled_spectra {
     sampled_spectrum<N> reflectance, index, index2, inv_index2, kappa;
+    sampled_spectrum<N> lambda, film_index;  ///< set for a material with a thin film
 
     const sampled_spectrum<N>& albedo() const noexcept { return reflectance; }
+    const sampled_spectrum<N>& wavelength() const noexcept { return lambda; }
+    const sampled_spectrum<N>& film_eta() const noexcept { return film_index; }
     const sampled_spectrum<N>& eta() const noexcept { return index; }
     const sampled_spectrum<N>& eta2() const noexcept { return index2; }
     const sampled_spectrum<N>& inv_eta2() const noexcept { return inv_index2; }
@@ -112,6 +116,21 @@ struct sampled_spectra {
 /// per-material tables, when its `has_ior()`); false unless B says so.
 template <class B>
 inline constexpr bool reads_conductor_v = requires { requires B::reads_conductor; };
+
+/// \brief A BxDF that may carry a thin film (`film()`: the film, or null); its spectra
+/// source then also gives the wavelengths (`wavelength()`) and the film's index (`film_eta()`).
+template <class B>
+inline constexpr bool reads_film_v = requires(const B& b) { b.film(); };
+
+/// \brief A spectra source that gives the wavelengths and a film's index (every source the
+/// estimators use; a coat's view of its base does not, and a coat's base has no film).
+template <class S>
+concept film_source = requires(const S& s) {
+    s.wavelength()[0];
+    s.film_eta()[0];
+};
+
+static_assert(film_source<sampled_spectra<4>>);
 
 /// \brief The BxDF concept of the table above, checked at 4 wavelengths.
 template <class B>

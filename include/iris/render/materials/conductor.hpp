@@ -36,8 +36,10 @@ struct conductor_spectra {
     bool has_ior() const noexcept { return data.ior.has_value(); }
     const tabulated_spectrum& conductor_eta() const noexcept { return data.ior->eta; }
     const tabulated_spectrum& conductor_k() const noexcept { return data.ior->k; }
+    const material::thin_film* film() const noexcept { return data.film ? &*data.film : nullptr; }
 
-    /// F(c, η(λ_k), k(λ_k)) with a complex index, R(λ_k) without, each times `scale`;
+    /// F(c, η(λ_k), k(λ_k)) with a complex index (under a film: the film-on-metal
+    /// reflectance, `film_reflectance`), R(λ_k) without, each times `scale`;
     /// c = |cos| of the angle of incidence on the (micro)surface.
     template <std::size_t N, class S>
     sampled_spectrum<N> fresnel(float c, const S& s, float scale = 1.0f) const noexcept {
@@ -49,6 +51,15 @@ struct conductor_spectra {
         }
         const auto& e = s.eta();
         const auto& k = s.k();
+        if constexpr (film_source<S>)  // (a coat's base, the one source without, has no film)
+            if (data.film) {
+                const auto& l = s.wavelength();
+                const auto& nf = s.film_eta();
+                const auto d = static_cast<float>(data.film->thickness_nm);
+                for (std::size_t i = 0; i < N; ++i)
+                    f[i] = scale * detail::film_reflectance(c, nf[i], d / l[i], {e[i], k[i]});
+                return f;
+            }
         for (std::size_t i = 0; i < N; ++i) f[i] = scale * detail::fresnel_conductor(c, e[i], k[i]);
         return f;
     }

@@ -66,6 +66,89 @@ inline float fresnel_conductor(float c, float eta, float k) noexcept {
     return f == f ? f : 1.0f;  // 0/0 only where η = k = 0 at grazing incidence
 }
 
+/// \brief A complex number in float with the few operations the film's reflectance needs,
+/// written out (std::complex's operators call the libgcc routines that handle infinities;
+/// nothing here is infinite).
+struct cfloat {
+    float re = 0.0f, im = 0.0f;
+};
+inline cfloat operator+(cfloat a, cfloat b) noexcept { return {a.re + b.re, a.im + b.im}; }
+inline cfloat operator-(cfloat a, cfloat b) noexcept { return {a.re - b.re, a.im - b.im}; }
+inline cfloat operator*(cfloat a, cfloat b) noexcept { return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
+inline float norm2(cfloat a) noexcept { return a.re * a.re + a.im * a.im; }
+inline cfloat quotient(cfloat a, cfloat b) noexcept {
+    const float d = norm2(b);
+    return {(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
+}
+/// \brief √z with Im ≥ 0, for Im z ≥ 0: the root whose wave decays into the layer (an
+/// absorbing metal, or an evanescent wave beyond the critical angle).
+inline cfloat sqrt_decaying(cfloat z) noexcept {
+    const float r = std::sqrt(norm2(z));
+    if (!(r > 0.0f)) return {};
+    if (z.re >= 0.0f) {
+        const float a = std::sqrt(0.5f * (r + z.re));
+        return {a, std::fabs(z.im) / (2.0f * a)};
+    }
+    const float b = std::sqrt(0.5f * (r - z.re));
+    return {std::fabs(z.im) / (2.0f * b), b};
+}
+
+/// \brief Unpolarised reflectance of a thin film of real index n_f ≥ 1 and thickness d on a
+/// base of complex index n_b = η + ik (both relative to the outside), lit from the outside at
+/// c = cos θ₀ ∈ [0, 1], at a wavelength with d/λ = `thickness_over_lambda` (docs/method.md §9).
+/// With q_j = n_j cos θ_j = √(n_j² − sin²θ₀) (the decaying root), each polarisation's
+/// amplitude is the Airy sum of the film's multiple reflections,
+///   r = (r₀₁ + r₁₂ e^{2iδ}) / (1 + r₀₁ r₁₂ e^{2iδ}),  δ = 2π (d/λ) q_f,
+/// with r_ij = (q_i − q_j)/(q_i + q_j) (s) and (n_j² q_i − n_i² q_j)/(n_j² q_i + n_i² q_j) (p);
+/// R = (|r_s|² + |r_p|²)/2. d = 0 or n_f = 1 give the bare base's Fresnel reflectance.
+inline float film_reflectance(float c, float film_index, float thickness_over_lambda, cfloat base) noexcept {
+    c = std::clamp(c, 0.0f, 1.0f);
+    if (!(c > 0.0f)) return 1.0f;  // grazing incidence: everything is reflected
+    const float s2 = 1.0f - c * c;
+    const cfloat n1{film_index * film_index, 0.0f};
+    const cfloat n2 = base * base;
+    const cfloat q0{c, 0.0f};
+    const cfloat q1 = sqrt_decaying({n1.re - s2, 0.0f});
+    const cfloat q2 = sqrt_decaying({n2.re - s2, n2.im});
+    // e^{2iδ} = e^{i·4π(d/λ)q_f}: a phase, and a decay where the wave in the film is evanescent
+    constexpr float four_pi = 12.566370614359172f;
+    const float a = four_pi * thickness_over_lambda;
+    const float decay = std::exp(-a * q1.im);
+    const cfloat e{decay * std::cos(a * q1.re), decay * std::sin(a * q1.re)};
+    const auto airy = [&](cfloat r01, cfloat r12) {
+        const cfloat t = r12 * e;
+        return norm2(r01 + t) / norm2(cfloat{1.0f, 0.0f} + r01 * t);
+    };
+    const float rs = airy(quotient(q0 - q1, q0 + q1), quotient(q1 - q2, q1 + q2));
+    const cfloat p0 = n1 * q0, p1 = q1, p2 = n2 * q1, p3 = n1 * q2;  // n₀ = 1
+    const float rp = airy(quotient(p0 - p1, p0 + p1), quotient(p2 - p3, p2 + p3));
+    const float f = 0.5f * (rs + rp);
+    return f == f ? std::min(f, 1.0f) : 1.0f;
+}
+
+/// \brief The reflectance of a dielectric of relative index η under a thin film (n_f, d/λ),
+/// from either side: `cos_i` on the side of the incident direction's normal, as
+/// `fresnel_dielectric`. The film is lossless, so its reflectance from the inside equals the
+/// reflectance from the outside at the angle Snell's law pairs with it (T is reciprocal and
+/// R = 1 − T on both sides), and 1 beyond the critical angle (no wave leaves into the outside).
+inline float fresnel_film_dielectric(float cos_i, float eta, float film_index, float thickness_over_lambda) noexcept {
+    cos_i = std::clamp(cos_i, -1.0f, 1.0f);
+    float c = std::fabs(cos_i);
+    if (cos_i < 0.0f) {
+        const float s2 = eta * eta * (1.0f - c * c);
+        if (s2 >= 1.0f) return 1.0f;
+        c = std::sqrt(1.0f - s2);
+    }
+    return film_reflectance(c, film_index, thickness_over_lambda, {eta, 0.0f});
+}
+
+/// \brief A film's index and d/λ at one wavelength (what `fresnel_film_dielectric` needs
+/// beside the base's index).
+struct film_layer {
+    float index = 1.0f;
+    float thickness_over_lambda = 0.0f;
+};
+
 /// \brief Refract `wi` (pointing away) through a surface with normal `n`; eta = n_inside /
 /// n_outside with `n` pointing outside. Returns the transmitted direction and the relative
 /// eta it saw (η_t/η_i), or nothing on total internal reflection.
@@ -114,6 +197,24 @@ sampled_spectrum<M> fresnel_follow(float co, lobe kind, const Eta2& sq, const In
         const float inv_et2 = from_outside ? ie2 : e2;  // 1/η′² of the hero's transmission
         const float f = fresnel_walter(c, ef2);
         w[k] = reflection ? f : (1.0f - f) * inv_et2;
+    }
+    return w;
+}
+
+/// \brief `fresnel_follow` for a dielectric under a thin film of thickness `thickness_nm`:
+/// R(λ_b) from `fresnel_film_dielectric` with η, the wavelengths and the film's index
+/// read from the spectra source (a film is rare: this loop is not the vectorised one).
+template <std::size_t M, class Eta, class Lambda, class FilmEta>
+sampled_spectrum<M> film_follow(float co, lobe kind, const Eta& eta, const Lambda& lambda, const FilmEta& film_eta,
+                                double thickness_nm) noexcept {
+    co = std::clamp(co, -1.0f, 1.0f);
+    const bool from_outside = co > 0.0f;
+    const float d = static_cast<float>(thickness_nm);
+    sampled_spectrum<M> w;
+    for (std::size_t k = 0; k < M; ++k) {
+        const float e = eta[k];
+        const float f = fresnel_film_dielectric(co, e, film_eta[k], d / lambda[k]);
+        w[k] = kind == lobe::reflection ? f : (1.0f - f) * (from_outside ? 1.0f / (e * e) : e * e);
     }
     return w;
 }

@@ -83,6 +83,11 @@ sampled_spectra<N> scene_spectra(const B& b, const sampled_wavelengths<N>& wl) n
             s.index = sample(b.conductor_eta(), wl);
             s.kappa = sample(b.conductor_k(), wl);
         }
+    if constexpr (reads_film_v<B>)
+        if (const material::thin_film* f = b.film()) {
+            for (std::size_t k = 0; k < N; ++k) s.lambda[k] = wl[k];
+            s.film_index = detail::etas(f->ior, wl);
+        }
     return s;
 }
 

@@ -66,7 +66,8 @@ struct rough_value {
     float pdf = 0.0f;        ///< the lobe's density times the probability of choosing it (`selection`)
     float selection = 0.0f;  ///< that probability: F at the microfacet for reflection, 1 − F for transmission
 };
-inline rough_value rough_dielectric_value(const ggx& m, const glm::vec3& wo, const glm::vec3& wi, float eta) noexcept {
+inline rough_value rough_dielectric_value(const ggx& m, const glm::vec3& wo, const glm::vec3& wi, float eta,
+                                          const film_layer* film = nullptr) noexcept {
     const float cos_o = wo.z, cos_i = wi.z;
     if (cos_o == 0.0f || cos_i == 0.0f) return {};
     const bool reflect = cos_i * cos_o > 0.0f;
@@ -77,7 +78,8 @@ inline rough_value rough_dielectric_value(const ggx& m, const glm::vec3& wo, con
     wm = wm / std::sqrt(len2);
     if (wm.z < 0.0f) wm = -wm;
     if (glm::dot(wm, wi) * cos_i < 0.0f || glm::dot(wm, wo) * cos_o < 0.0f) return {};  // back-facing microfacet
-    const float fr = fresnel_dielectric(glm::dot(wo, wm), eta);
+    const float fr = film ? fresnel_film_dielectric(glm::dot(wo, wm), eta, film->index, film->thickness_over_lambda)
+                          : fresnel_dielectric(glm::dot(wo, wm), eta);
     if (reflect) {
         const float f = m.d(wm) * m.g(wo, wi) * fr / std::fabs(4.0f * cos_i * cos_o);
         const float pdf = m.d_visible(wo, wm) / (4.0f * std::fabs(glm::dot(wo, wm))) * fr;

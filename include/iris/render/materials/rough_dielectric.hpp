@@ -21,7 +21,8 @@ namespace iris {
 
 /// \brief The hero samples a visible microfacet normal and reflects or refracts through it
 /// with probability F(λ₀); every wavelength keeps a finite p(ωi | λ_k) (rough events never
-/// terminate the secondaries, docs/method.md §3), and the bins follow with f·|cos|.
+/// terminate the secondaries, docs/method.md §3), and the bins follow with f·|cos|. Under a
+/// thin film F is the film's reflectance at the microfacet (`fresnel_film_dielectric`).
 struct rough_dielectric : parts_of_eval<rough_dielectric> {
     const material::dielectric& data;
 
@@ -32,6 +33,7 @@ struct rough_dielectric : parts_of_eval<rough_dielectric> {
     static constexpr bool reads_eta = true;
 
     const ior_model& ior() const noexcept { return data.ior; }
+    const material::thin_film* film() const noexcept { return data.film ? &*data.film : nullptr; }
     detail::ggx distribution() const noexcept { return {data.roughness}; }
 
     /// \brief f·|cos θi| and pdf from one evaluation of the microfacet terms per wavelength.
@@ -41,7 +43,7 @@ struct rough_dielectric : parts_of_eval<rough_dielectric> {
         const auto& e = s.eta();
         bsdf_value<N> out;
         for (std::size_t k = 0; k < N; ++k) {
-            const auto v = detail::rough_dielectric_value(m, wo, wi, e[k]);
+            const auto v = value(m, wo, wi, e[k], k, s);
             out.f_cos[k] = v.f_cos;
             out.pdf[k] = v.pdf;
         }
@@ -56,7 +58,9 @@ struct rough_dielectric : parts_of_eval<rough_dielectric> {
         if (lo.z == 0.0f) return std::nullopt;
         const detail::ggx m = distribution();
         const glm::vec3 wm = m.sample_visible(lo, u);
-        const float f0 = detail::fresnel_dielectric(glm::dot(lo, wm), eta[0]);
+        const float f0 = data.film ? detail::fresnel_film_dielectric(glm::dot(lo, wm), eta[0], layer(0, s).index,
+                                                                     layer(0, s).thickness_over_lambda)
+                                   : detail::fresnel_dielectric(glm::dot(lo, wm), eta[0]);
         bsdf_sample<N> out;
         glm::vec3 li;
         if (u_lobe < f0) {
@@ -72,7 +76,7 @@ struct rough_dielectric : parts_of_eval<rough_dielectric> {
         }
         out.wi = li;
         for (std::size_t k = 0; k < N; ++k) {
-            const auto v = detail::rough_dielectric_value(m, lo, li, eta[k]);
+            const auto v = value(m, lo, li, eta[k], k, s);
             out.f_cos[k] = v.f_cos;
             out.pdf[k] = v.pdf;
         }
@@ -83,6 +87,20 @@ struct rough_dielectric : parts_of_eval<rough_dielectric> {
     template <std::size_t M, class S>
     sampled_spectrum<M> follow(const glm::vec3& wo, const glm::vec3& wi, lobe /*kind*/, const S& s) const noexcept {
         return this->template f_cos<M>(wo, wi, s);
+    }
+
+private:
+    /// The film at wavelength k of the spectra source (only called when there is one).
+    template <class S>
+    detail::film_layer layer(std::size_t k, const S& s) const noexcept {
+        return {s.film_eta()[k], static_cast<float>(data.film->thickness_nm) / s.wavelength()[k]};
+    }
+    template <class S>
+    detail::rough_value value(const detail::ggx& m, const glm::vec3& wo, const glm::vec3& wi, float eta, std::size_t k,
+                              const S& s) const noexcept {
+        if (!data.film) return detail::rough_dielectric_value(m, wo, wi, eta);
+        const detail::film_layer f = layer(k, s);
+        return detail::rough_dielectric_value(m, wo, wi, eta, &f);
     }
 };
 

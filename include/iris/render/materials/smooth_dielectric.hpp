@@ -22,6 +22,8 @@ namespace iris {
 /// keeps every wavelength (had λ_k been the hero, it would have reflected with probability
 /// F(λ_k)); a refraction through a dispersive interface keeps the hero alone (docs/method.md §3).
 /// The bins follow with F(λ_b) or (1 − F(λ_b))/η′_b², read from tabulated η² and 1/η².
+/// Under a thin film F is the film's reflectance (`fresnel_film_dielectric`): the
+/// directions are the bare interface's, the weights the film's.
 struct smooth_dielectric : delta_bxdf {
     const material::dielectric& data;
 
@@ -31,6 +33,7 @@ struct smooth_dielectric : delta_bxdf {
     static constexpr bool reads_eta = true;
 
     const ior_model& ior() const noexcept { return data.ior; }
+    const material::thin_film* film() const noexcept { return data.film ? &*data.film : nullptr; }
 
     template <std::size_t N, class S>
     std::optional<bsdf_sample<N>> sample(const glm::vec3& wo, const sampled_wavelengths<N>& /*wl*/, float u_lobe,
@@ -39,7 +42,14 @@ struct smooth_dielectric : delta_bxdf {
         const bool dispersive = is_dispersive(data.ior);
         const float co = wo.z;
         sampled_spectrum<N> fr;
-        for (std::size_t k = 0; k < N; ++k) fr[k] = detail::fresnel_dielectric(co, eta[k]);
+        if (data.film) {
+            const auto& l = s.wavelength();
+            const auto& nf = s.film_eta();
+            const auto d = static_cast<float>(data.film->thickness_nm);
+            for (std::size_t k = 0; k < N; ++k) fr[k] = detail::fresnel_film_dielectric(co, eta[k], nf[k], d / l[k]);
+        } else {
+            for (std::size_t k = 0; k < N; ++k) fr[k] = detail::fresnel_dielectric(co, eta[k]);
+        }
         bsdf_sample<N> out;
         out.delta = true;
         if (u_lobe < fr[0]) {
@@ -65,6 +75,8 @@ struct smooth_dielectric : delta_bxdf {
 
     template <std::size_t M, class S>
     sampled_spectrum<M> follow(const glm::vec3& wo, const glm::vec3& /*wi*/, lobe kind, const S& s) const noexcept {
+        if constexpr (film_source<S>)  // (every estimator's; bench/bterm_bench.cpp's film-free glass reads η² alone)
+            if (data.film) return detail::film_follow<M>(wo.z, kind, s.eta(), s.wavelength(), s.film_eta(), data.film->thickness_nm);
         return detail::fresnel_follow<M>(wo.z, kind, s.eta2(), s.inv_eta2());
     }
 };
