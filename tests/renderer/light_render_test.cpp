@@ -757,6 +757,12 @@ TEST(ThinFilmRender, EveryPresetReflectsTheExactInterferenceColoursOfAFilmOnGold
                            [](const iris::scene_desc& s, double c) { return film_xyz(s, 2.2, 120.0, c); }, 601, 512,
                            "filmed gold plane");
 }
+// The same under bdpt (its connections evaluate the film through the same BxDF).
+TEST(ThinFilmRender, EveryPresetUnderBdptReflectsTheExactInterferenceColoursOfAFilmOnGold) {
+    expect_conductor_plane(R"({"type": "conductor", "metal": "Au", "film": {"thickness_nm": 120, "ior": 2.2}})",
+                           [](const iris::scene_desc& s, double c) { return film_xyz(s, 2.2, 120.0, c); }, 601, 512,
+                           "filmed gold plane", "bdpt");
+}
 
 namespace {
 
