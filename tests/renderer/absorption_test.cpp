@@ -15,6 +15,7 @@
 #include <iris/scene/scene.hpp>
 #include <iris/spectrum/color.hpp>
 
+#include "phenomena_options.hpp"
 #include "region_stats.hpp"
 
 namespace {
@@ -23,16 +24,7 @@ using iris::renderer::options;
 using iris_test::region_estimate;
 
 options make(const std::string& estimator, const std::string& preset, int spp, std::uint64_t seed) {
-    options o;
-    o.estimator = estimator;
-    o.preset = preset;
-    o.width = 8;
-    o.height = 8;
-    o.spp = spp;
-    o.nthold = 1 << 20;  // α < 1 throughout: `paper`'s B term is on for every sample
-    o.seed = seed;
-    o.threads = 2;
-    return o;
+    return iris_test::phenomena_options(estimator, preset, spp, seed);
 }
 
 const char* grey = "0.5";

@@ -637,17 +637,21 @@ struct cos_table {
 /// the metal's Fresnel at incidence cos = x, by a 0.1 nm midpoint sum. (At 1 nm the sum
 /// missed the integral by 4·10⁻⁶ of Z — the tables' kinks sit inside its steps — which the
 /// smooth plane's propagating presets, with standard errors of 6·10⁻⁷, detected.)
-std::array<double, 3> fresnel_xyz(const iris::scene_desc& s, const iris::material::conductor_ior& ior, double x) {
+/// The sum itself for any reflectance R(λ): Σ_λ R(λ) L(λ) cmf(λ) Δλ / ∫ȳ.
+std::array<double, 3> reflected_xyz(const iris::scene_desc& s, const std::function<double(double)>& reflectance) {
     std::array<double, 3> v{};
     constexpr double step = 0.1;
     for (double l = s.lambda_min + 0.5 * step; l < s.lambda_max; l += step) {
-        const double e = complex_fresnel(x, ior.eta(l), ior.k(l)) * s.environment->radiance(static_cast<float>(l)) * step;
+        const double e = reflectance(l) * s.environment->radiance(static_cast<float>(l)) * step;
         v[0] += e * iris::cie::x_bar(l);
         v[1] += e * iris::cie::y_bar(l);
         v[2] += e * iris::cie::z_bar(l);
     }
     for (auto& c : v) c /= iris::cie::y_integral;
     return v;
+}
+std::array<double, 3> fresnel_xyz(const iris::scene_desc& s, const iris::material::conductor_ior& ior, double x) {
+    return reflected_xyz(s, [&](double l) { return complex_fresnel(x, ior.eta(l), ior.k(l)); });
 }
 
 /// \brief Every preset renders a 3 × 3 conductor plane (material JSON `material`) under the
@@ -731,18 +735,10 @@ namespace {
 /// matrix oracle (tests/render/thin_film_oracle.hpp; the metal's N = η − ik in its convention).
 std::array<double, 3> film_xyz(const iris::scene_desc& s, double n_film, double d_nm, double x) {
     const auto& ior = gold_index(s);
-    std::array<double, 3> v{};
-    constexpr double step = 0.1;
-    for (double l = s.lambda_min + 0.5 * step; l < s.lambda_max; l += step) {
-        const iris_test::cd base(ior.eta(l), -ior.k(l));
-        const double r = iris_test::matrix_method(1.0, n_film, d_nm, base, std::sqrt(std::max(0.0, 1.0 - x * x)), l).r;
-        const double e = r * s.environment->radiance(static_cast<float>(l)) * step;
-        v[0] += e * iris::cie::x_bar(l);
-        v[1] += e * iris::cie::y_bar(l);
-        v[2] += e * iris::cie::z_bar(l);
-    }
-    for (auto& c : v) c /= iris::cie::y_integral;
-    return v;
+    const double sin0 = std::sqrt(std::max(0.0, 1.0 - x * x));
+    return reflected_xyz(s, [&](double l) {
+        return iris_test::matrix_method(1.0, n_film, d_nm, iris_test::cd(ior.eta(l), -ior.k(l)), sin0, l).r;
+    });
 }
 
 }  // namespace
