@@ -72,6 +72,12 @@ std::string film_summary(const std::optional<iris::material::thin_film>& f) {
     return fmt::format(" film={:g}nm n(550)={:.4f}", f->thickness_nm, iris::refractive_index(f->ior, 550.0));
 }
 
+std::string scattering_summary(const std::optional<iris::medium_scattering>& m) {
+    if (!m) return {};
+    return fmt::format(" scattering sigma_s(450/550/650)={:.4g}/{:.4g}/{:.4g} per unit g={:g}", m->sigma_s(450.0),
+                       m->sigma_s(550.0), m->sigma_s(650.0), m->g);
+}
+
 std::string material_summary(const iris::scene_desc& s, const iris::material_desc& m) {
     struct summary {  // one call per alternative: a new material does not compile without its own
         const iris::scene_desc& s;
@@ -102,7 +108,7 @@ std::string material_summary(const iris::scene_desc& s, const iris::material_des
                                                           (*d.absorption)(450.0), (*d.absorption)(550.0),
                                                           (*d.absorption)(650.0))
                                             : std::string(),
-                               film_summary(d.film));
+                               scattering_summary(d.scattering) + film_summary(d.film));
         }
         std::string operator()(const iris::material::coated& c) const {
             return fmt::format("coated eta={:g} {} thickness={:g} max_depth={}{} over {}", c.eta,
@@ -245,6 +251,8 @@ void info(const std::string& name, bool json, bool strict) {
         j["has_delta_lights"] = f.has_delta_lights;
         j["absorbing"] = f.absorbing;
         j["thin_film"] = f.thin_film;
+        j["scattering"] = f.scattering;
+        j["scene_medium"] = f.scene_medium;
         j["emitter_spds"] = f.emitter_spds;
         j["approximated"] = iris::scene::approximations(s);
         j["load_seconds"] = l.seconds;
@@ -266,6 +274,13 @@ void info(const std::string& name, bool json, bool strict) {
     fmt::print("lights       {}\n", s.lights.size());
     for (const auto& li : s.lights) fmt::print("  {}\n", light_summary(li));
     fmt::print("environment  {}\n", environment_summary(s));
+    if (s.medium)
+        fmt::print("medium       {}{}\n",
+                   s.medium->absorption ? fmt::format("absorbing sigma_a(450/550/650)={:.4g}/{:.4g}/{:.4g} per unit",
+                                                      (*s.medium->absorption)(450.0), (*s.medium->absorption)(550.0),
+                                                      (*s.medium->absorption)(650.0))
+                                        : std::string("non-absorbing"),
+                   scattering_summary(s.medium->scattering));
     for (const auto& m : iris::scene::approximations(s)) fmt::print("approximated {}\n", m);
     fmt::print("bounds       [{:g}, {:g}, {:g}] - [{:g}, {:g}, {:g}]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
     fmt::print("camera       {}x{} fov={:g} position=[{:g}, {:g}, {:g}] look_at=[{:g}, {:g}, {:g}]\n", s.camera.width,
@@ -275,9 +290,10 @@ void info(const std::string& name, bool json, bool strict) {
     std::string spds;
     for (const auto& n : f.emitter_spds) spds += (spds.empty() ? "" : ",") + n;
     fmt::print("features     dispersive_specular={} dispersive_rough={} has_specular={} has_environment={} "
-               "has_environment_map={} has_delta_lights={} absorbing={} thin_film={} emitter_spds={}\n",
+               "has_environment_map={} has_delta_lights={} absorbing={} thin_film={} scattering={} scene_medium={} "
+               "emitter_spds={}\n",
                f.dispersive_specular, f.dispersive_rough, f.has_specular, f.has_environment, f.has_environment_map,
-               f.has_delta_lights, f.absorbing, f.thin_film, spds);
+               f.has_delta_lights, f.absorbing, f.thin_film, f.scattering, f.scene_medium, spds);
     fmt::print("load         {:.2f} ms\n", l.seconds * 1e3);
 }
 

@@ -35,6 +35,7 @@
 #include "iris/render/lights/light.hpp"
 #include "iris/render/materials/materials.hpp"
 #include "iris/render/absorption.hpp"
+#include "iris/render/medium.hpp"
 #include "iris/render/scene.hpp"
 #include "iris/render/texture.hpp"
 #include "iris/sampling/bias/bin_layout.hpp"
@@ -293,16 +294,29 @@ struct hero_tables {
     std::vector<lattice_spectrum> albedo;
     std::vector<lattice_spectrum> emission;
     std::vector<lattice_spectrum> conductor_eta, conductor_k;  ///< per material; empty unless a conductor with an index
-    std::vector<lattice_spectrum> absorption;  ///< per material; empty unless an absorbing dielectric (σ_a)
+    /// Per medium id (iris/render/absorption.hpp: a material's solid, then the scene's own
+    /// medium): σ_a, empty where it does not absorb; σ_s, empty where it does not scatter, and
+    /// the phase function's g.
+    std::vector<lattice_spectrum> absorption, scattering;
+    std::vector<float> phase_g;
+    std::vector<unsigned char> scatters_;  ///< per medium id: does it scatter?
     std::uint32_t albedo_basis = 0;  ///< the first basis row of `albedo` (= the material count)
 
-    /// \brief exp(−σ_a(λ_k)·t) of a length t (possibly ∞) inside absorbing material m
-    /// (iris/render/absorption.hpp).
+    /// \brief exp(−σ_t(λ_k)·t), σ_t = σ_a + σ_s, of a length t (possibly ∞) through medium m
+    /// (iris/render/absorption.hpp): what a shadow ray lets through.
     template <std::size_t N>
     sampled_spectrum<N> transmittance(std::uint32_t m, const sampled_wavelengths<N>& wl, float t) const noexcept {
         sampled_spectrum<N> v = absorption[m](wl);
+        if (scatters_[m]) v += scattering[m](wl);
         for (std::size_t k = 0; k < N; ++k) v[k] = beer_lambert(v[k], t);
         return v;
+    }
+    /// \brief Does medium m scatter (iris/render/medium.hpp), or only absorb?
+    bool scatters(std::uint32_t m) const noexcept { return scatters_[m] != 0; }
+    /// \brief Medium m's coefficients at the wavelengths `wl`.
+    template <std::size_t N>
+    medium_coefficients<N> medium(std::uint32_t m, const sampled_wavelengths<N>& wl) const noexcept {
+        return {absorption[m](wl), scattering[m](wl), phase_g[m], scatters_[m] != 0};
     }
 
     /// \brief Le(λ_k) = Σ_i weight_i · table_{first+i}(λ_k) (an emitter: its table times 1, exactly).
@@ -361,10 +375,15 @@ struct hero_tables {
                 conductor_eta.emplace_back();
                 conductor_k.emplace_back();
             });
-        for (const material_desc& m : scene.materials) {
-            const auto* d = std::get_if<material::dielectric>(&m);
-            if (d && d->absorption) absorption.emplace_back(*d->absorption, lo, hi);
+        for (std::uint32_t id = 0; id < medium_count(scene); ++id) {
+            const tabulated_spectrum* sa = medium_absorption(scene, id);
+            const medium_scattering* ss = medium_scattering_of(scene, id);
+            if (sa) absorption.emplace_back(*sa, lo, hi);
             else absorption.emplace_back();
+            if (ss) scattering.emplace_back(ss->sigma_s, lo, hi);
+            else scattering.emplace_back();
+            phase_g.push_back(ss ? ss->g : 0.0f);
+            scatters_.push_back(ss != nullptr);
         }
         albedo_basis = static_cast<std::uint32_t>(albedo.size());
         if (has_textures(scene))
@@ -401,7 +420,7 @@ struct bin_tables {
     std::vector<spectrum> eta2;     ///< η², likewise (Fresnel at the bins reads η² and 1/η², no squaring or division)
     std::vector<spectrum> inv_eta2; ///< 1/η², likewise
     std::vector<spectrum> k;        ///< per material: a conductor's k (its η is in `eta`); empty otherwise
-    std::vector<spectrum> absorption;  ///< per material: an absorbing dielectric's σ_a; empty otherwise
+    std::vector<spectrum> absorption;  ///< per medium id (iris/render/absorption.hpp): its σ_a; empty where it does not absorb
     std::vector<spectrum> emission;  ///< indexed as `emission_ref` indexes them
     std::vector<spectrum> film_eta;  ///< per material: a thin film's index; empty otherwise
     spectrum lambda;                 ///< λ_b itself (a film's phase reads it)
@@ -442,10 +461,11 @@ struct bin_tables {
                 }
                 k.emplace_back();
             });
-        for (const material_desc& m : scene.materials) {
-            const auto* d = std::get_if<material::dielectric>(&m);
-            if (d && d->absorption) absorption.emplace_back(lattice, *d->absorption);
+        for (std::uint32_t id = 0; id < medium_count(scene); ++id) {
+            if (const tabulated_spectrum* sa = medium_absorption(scene, id)) absorption.emplace_back(lattice, *sa);
             else absorption.emplace_back();
+        }
+        for (const material_desc& m : scene.materials) {
             visit_bxdf(m, [&](const auto& b) {
                 if constexpr (reads_film_v<std::remove_cvref_t<decltype(b)>>)
                     if (const material::thin_film* f = b.film()) {

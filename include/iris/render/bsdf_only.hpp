@@ -16,7 +16,9 @@
 /// its rays start on the surface and skip the triangle they leave (`intersect_leaving`). Everything next-event estimation adds —
 /// light choice, area pdfs, shadow rays, the two-strategy and C-wavelength MIS weights —
 /// is absent, so an error in any of it shows as a disagreement between the two estimators.
-/// It is unbiased for every scene without delta lights, dispersive ones included (one
+/// In a scattering medium it flies by analog collisions on σ_t at its one wavelength,
+/// scattering with weight σ_s/σ_t and sampling the phase function (docs/method.md §10): a
+/// technique the path tracer does not use. It is unbiased for every scene without delta lights, dispersive ones included (one
 /// wavelength, so a λ-dependent refraction needs no termination), but small lamps make it
 /// noisy. Point, spot and distant lights cannot be hit by a ray: it does not see them
 /// (`scene_features::has_delta_lights`; their checks are closed forms,
@@ -33,6 +35,7 @@
 #include <glm/vec3.hpp>
 
 #include "iris/render/absorption.hpp"
+#include "iris/render/medium.hpp"
 #include "iris/render/bsdf.hpp"
 #include "iris/render/frame.hpp"
 #include "iris/render/integrator.hpp"
@@ -72,21 +75,56 @@ public:
         double radiance = 0.0;
 
         std::uint32_t from_shape = no_triangle, from_prim = no_triangle;  // the triangle the ray leaves
-        std::uint32_t medium = no_medium;  // the absorbing solid the ray is in (iris/render/absorption.hpp)
+        // the medium the ray is in (iris/render/absorption.hpp): the camera's is the scene's own
+        std::uint32_t medium = m_scene.medium ? static_cast<std::uint32_t>(m_scene.materials.size()) : no_medium;
         for (int depth = 0;; ++depth) {
             const auto hit = intersect_leaving(tracer, origin, dir, from_shape, from_prim, out.rays);
-            // inside an absorbing solid: σ_a(λ) from the scene's own table
-            const double sigma = medium != no_medium ? absorption_of(m_scene, medium)(static_cast<double>(lambda)) : 0.0;
-            if (!hit && sigma > 0.0) break;  // an infinite length of absorbing material
+            std::optional<surface_interaction> si;
+            if (hit) {
+                si = make_interaction(m_scene, *hit, dir);
+                if (!si) break;  // degenerate triangle
+            }
+            if (medium != no_medium) {
+                // σ_a(λ), σ_s(λ) from the scene's own tables
+                const tabulated_spectrum* sa = medium_absorption(m_scene, medium);
+                const medium_scattering* ms = medium_scattering_of(m_scene, medium);
+                const double sigma_a = sa ? (*sa)(static_cast<double>(lambda)) : 0.0;
+                const double sigma_s = ms ? ms->sigma_s(static_cast<double>(lambda)) : 0.0;
+                const double t_hit = si ? static_cast<double>(glm::distance(origin, si->sp.p))
+                                        : std::numeric_limits<double>::infinity();
+                if (sigma_s > 0.0) {
+                    // analog free flight on σ_t: collide at t with density σ_t e^{−σ_t t}, scatter
+                    // with weight σ_s/σ_t; flying through has the probability of the transmittance
+                    const double sigma_t = sigma_a + sigma_s;
+                    const double t = -std::log1p(-static_cast<double>(rng.next_medium())) / sigma_t;
+                    if (t < t_hit) {
+                        if (depth >= m_settings.max_depth) break;
+                        rng.start_bounce(depth);
+                        beta *= static_cast<float>(sigma_s / sigma_t);
+                        const hg_phase phase{ms->g};
+                        const auto ps = phase.sample<1>(-dir, wl, 0.0f, rng.next2(), sampled_spectra<1>{});
+                        if (!ps || !(beta > 0.0f)) break;
+                        if (depth + 1 >= m_settings.rr_start_depth) {
+                            const float survive = beta < 1.0f ? beta : 1.0f;
+                            if (rng.next() >= survive) break;
+                            beta /= survive;
+                        }
+                        origin += static_cast<float>(t) * dir;
+                        dir = ps->wi;
+                        from_shape = from_prim = no_triangle;
+                        continue;
+                    }
+                } else if (sigma_a > 0.0) {
+                    if (!hit) break;  // an infinite length of absorbing material
+                    beta *= static_cast<float>(std::exp(-sigma_a * t_hit));
+                }
+            }
             if (!hit) {
                 if (m_scene.environment) radiance += static_cast<double>(beta) * environment(dir, lambda);
                 break;
             }
             const shape_desc& shape = m_scene.shapes[hit->shape];
-            const auto si = make_interaction(m_scene, *hit, dir);
-            if (!si) break;  // degenerate triangle
             const glm::vec3& wo = si->wo;
-            if (sigma > 0.0) beta *= static_cast<float>(std::exp(-sigma * static_cast<double>(glm::distance(origin, si->sp.p))));
             if (shape.emitter) {
                 const emitter_desc& em = m_scene.emitters[*shape.emitter];
                 const float c = glm::dot(si->ng, wo);
@@ -107,11 +145,13 @@ public:
                 if (rng.next() >= survive) break;
                 beta /= survive;
             }
-            // the medium after a dielectric boundary: its inside (the back of n_g) if it absorbs,
-            // else the clear outside; other surfaces keep it (written here, not shared with the
-            // path tracer's `medium_after`)
-            if (const auto* d = std::get_if<material::dielectric>(&mat))
-                medium = d->absorption && glm::dot(bs->wi, si->ng) < 0.0f ? shape.material : no_medium;
+            // the medium after a dielectric boundary: its inside (the back of n_g) if it holds one,
+            // clear if not; the scene's own going out; other surfaces keep it (written here, not
+            // shared with the path tracer's `medium_after`)
+            if (const auto* d = std::get_if<material::dielectric>(&mat)) {
+                if (glm::dot(bs->wi, si->ng) < 0.0f) medium = d->absorption || d->scattering ? shape.material : no_medium;
+                else medium = m_scene.medium ? static_cast<std::uint32_t>(m_scene.materials.size()) : no_medium;
+            }
             origin = si->sp.p;  // not offset: see intersect_leaving
             dir = bs->wi;
             from_shape = hit->shape;

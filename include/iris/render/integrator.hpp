@@ -45,6 +45,7 @@
 #include "iris/render/absorption.hpp"
 #include "iris/render/bins.hpp"
 #include "iris/render/materials/materials.hpp"
+#include "iris/render/medium.hpp"
 #include "iris/render/propagation.hpp"
 #include "iris/render/frame.hpp"
 #include "iris/render/interaction.hpp"
@@ -115,14 +116,37 @@ public:
         if (propagates && alpha < 1.0f) bterm.start(dist, rng.next());  // only while the restriction is not yet relaxed
         hero_path hp;
 
+        hp.medium = outside_medium(m_scene);  // the camera is in the scene's medium, if any
         for (int depth = 0;; ++depth) {
             rng.start_bounce(depth);  // the bounce's slots (random.hpp), whatever was skipped before
             const auto hit = tracer.intersect(origin, dir, std::numeric_limits<float>::infinity());
             ++out.rays;
-            if (hp.medium != no_medium) {  // inside an absorbing solid (iris/render/absorption.hpp)
+            if (hp.medium != no_medium) {  // inside a medium (iris/render/absorption.hpp)
                 const float t = hit ? hit->t : std::numeric_limits<float>::infinity();
-                hp.beta *= m_hero.transmittance(hp.medium, wl, t);
-                bterm.attenuate(hp.medium, t);
+                if (!m_hero.scatters(hp.medium)) {  // absorbing only: Beer–Lambert (docs/method.md §8)
+                    hp.beta *= m_hero.transmittance(hp.medium, wl, t);
+                    bterm.attenuate(hp.medium, t);
+                } else {  // a free flight with the spectral MIS (iris/render/medium.hpp, docs/method.md §10)
+                    const medium_coefficients<C> mc = m_hero.medium(hp.medium, wl);
+                    const flight<C> fl = medium_flight(mc, t, rng.next_medium());
+                    hp.beta *= fl.beta;
+                    hp.rho *= fl.ratio;
+                    bterm.attenuate(hp.medium, fl.t);
+                    if (fl.scattered) {
+                        if (depth >= m_settings.max_depth) break;
+                        const surface_interaction vx = medium_interaction(origin + fl.t * dir, dir);
+                        const hg_phase phase{mc.g};
+                        bterm.enter(phase, hp.medium, emission_ref{});
+                        glm::vec3 wi;
+                        if (!scatter(tracer, phase, vx, no_medium, vx.wo, wl, sampled_spectra<C>{}, hp, bterm, rng, out, wi))
+                            break;
+                        if (depth + 1 >= m_settings.rr_start_depth && !survives_roulette(hp, bterm, rng)) break;
+                        origin = vx.sp.p;
+                        dir = wi;
+                        continue;
+                    }
+                    hp.pass *= fl.hero_pass;
+                }
             }
             if (!hit) {
                 if (m_lights.has_environment()) collect_environment(dir, wl, hp, bterm);
@@ -139,23 +163,13 @@ public:
             // one visit: the rest of the vertex is compiled for its material's BxDF
             glm::vec3 wi;
             const bool scattered = visit_bxdf(m_scene.materials[shape.material], [&](const auto& bxdf) {
-                using B = std::remove_cvref_t<decltype(bxdf)>;
                 // the material's spectra, each read once per vertex (a diffuse vertex reads its
                 // reflectance for NEE and for BSDF sampling): the hero's from its lattice tables
                 // and the index model, the bins' from theirs
                 emission_ref albedo;  // the reflectance at the hit: the material's table, or a texel's basis mix
                 const sampled_spectra<C> hero = m_hero.at_vertex(bxdf, m_scene, shape.material, vx.uv, wl, albedo);
                 bterm.enter(bxdf, shape.material, albedo);
-                if constexpr (!B::delta) next_event(tracer, bxdf, vx, shape.material, lo, wl, hero, hp, bterm, rng, out);
-                // BSDF sampling with the hero wavelength; the bins follow it (the sample stays
-                // in here: returning it through the visit cost a copy with store-forwarding stalls)
-                const float u_lobe = rng.next();
-                const auto s = bxdf.template sample<C>(lo, wl, u_lobe, rng.next2(), hero);
-                if (!s || !(s->pdf[0] > 0.0f)) return false;
-                bterm.follow(bxdf, lo, *s);
-                hp.scatter(*s);
-                wi = glm::normalize(vx.to_world(s->wi));
-                return true;
+                return scatter(tracer, bxdf, vx, shape.material, lo, wl, hero, hp, bterm, rng, out, wi);
             });
             if (!scattered) break;
             hp.medium = medium_after(m_scene, shape.material, vx.ng, wi, hp.medium);
@@ -200,10 +214,15 @@ private:
         float eta_scale = 1.0f;
         bool prev_delta = true;  ///< the camera ray: no light-sampling strategy competes
         float prev_pdf = 0.0f;
-        std::uint32_t medium = no_medium;  ///< the absorbing solid the ray is in (iris/render/absorption.hpp)
+        std::uint32_t medium = no_medium;  ///< the medium the ray is in (iris/render/absorption.hpp)
+        /// the hero's probability of flying through the scattering media since the last
+        /// vertex without scattering: part of its BSDF-sampling strategy's density for light
+        /// found at the end of the flight (iris/render/medium.hpp)
+        float pass = 1.0f;
 
         void scatter(const bsdf_sample<C>& s) noexcept {
             const float p0 = s.pdf[0];
+            pass = 1.0f;
             beta *= s.f_cos / p0;
             rho_before = rho;
             rho *= s.pdf / p0;
@@ -212,6 +231,37 @@ private:
             if (s.kind == lobe::transmission) eta_scale *= s.eta * s.eta;
         }
     };
+
+    /// \brief The rest of a vertex once its BxDF's spectra are read (`hero`, and the B term's
+    /// `enter`): next-event estimation unless the BxDF is delta, then BSDF sampling with the
+    /// hero wavelength, which the bins follow. False: the path ends. `wi` (world): the
+    /// direction sampled. A surface of material `material`, or a point in a medium (`hg_phase`,
+    /// material `no_medium`). The sample stays in here: returning it through the material's
+    /// visit cost a copy with store-forwarding stalls.
+    template <Intersector Tracer, class B, class Prop>
+    bool scatter(const Tracer& tracer, const B& bxdf, const surface_interaction& vx, std::uint32_t material,
+                 const glm::vec3& lo, const sampled_wavelengths<C>& wl, const sampled_spectra<C>& hero, hero_path& hp,
+                 Prop& bterm, sample_stream& rng, path_sample& out, glm::vec3& wi) const noexcept {
+        if constexpr (!B::delta) next_event(tracer, bxdf, vx, material, lo, wl, hero, hp, bterm, rng, out);
+        const float u_lobe = rng.next();
+        const auto s = bxdf.template sample<C>(lo, wl, u_lobe, rng.next2(), hero);
+        if (!s || !(s->pdf[0] > 0.0f)) return false;
+        bterm.follow(bxdf, lo, *s);
+        hp.scatter(*s);
+        wi = glm::normalize(vx.to_world(s->wi));
+        return true;
+    }
+
+    /// \brief A scattering point p in a medium, reached along unit `dir`, as an interaction:
+    /// no surface (a zero normal and error, so rays leave from p itself), the identity frame
+    /// (the phase function takes world directions).
+    static surface_interaction medium_interaction(const glm::vec3& p, const glm::vec3& dir) noexcept {
+        surface_interaction vx;
+        vx.sp = {p, glm::vec3(0.0f)};
+        vx.shading = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+        vx.wo = -dir;
+        return vx;
+    }
 
     /// \brief The environment found by a ray escaping along unit `dir` (BSDF sampling, or
     /// seen directly), MIS-weighted against light sampling unless the last scattering was delta.
@@ -242,8 +292,9 @@ private:
                  Prop& bterm) const noexcept {
         float denom, w_hero = 1.0f;
         if (mis) {
-            denom = hwss_emission_ratio_sum(hp.rho, hp.rho_before, pl, hp.prev_pdf);
-            w_hero = balance_heuristic(hp.prev_pdf, pl);
+            const float pb = hp.prev_pdf * hp.pass;  // the hero's BSDF strategy, through the media flown
+            denom = hwss_emission_ratio_sum(hp.rho, hp.rho_before, pl, pb);
+            w_hero = balance_heuristic(pb, pl);
         } else {
             denom = hwss_ratio_sum(hp.rho);
         }
@@ -278,17 +329,30 @@ private:
         if (tracer.occluded(ls->shadow.origin, ls->shadow.direction, ls->shadow.t_max)) return;
         const float pl = ls->pdf;
         const sampled_spectrum<C>& pb = fb.pdf;
-        const float w_light = balance_heuristic(pl, pb[0]);
-        const std::uint32_t medium = medium_after(m_scene, material, vx.ng, ls->wi, hp.medium);
+        // the medium toward the light: the vertex's own in a medium, else the one the surface leads to
+        std::uint32_t medium;
+        if constexpr (is_phase_v<B>) medium = hp.medium;
+        else medium = medium_after(m_scene, material, vx.ng, ls->wi, hp.medium);
         if (medium == no_medium) {
+            const float w_light = balance_heuristic(pl, pb[0]);
             hp.lc += hp.beta * f * m_hero.emitted(ls->le, wl) / (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
             bterm.template light<B>(ls->le, w_light, pl);
-        } else {  // the shadow ray crosses absorbing material (a light inside the solid)
+        } else {  // the shadow ray crosses a medium (a lamp inside coloured glass, fog)
             const float d = std::isfinite(ls->shadow.t_max) ? glm::length(ls->shadow.direction)
                                                             : std::numeric_limits<float>::infinity();
+            // BSDF sampling reaches the light only by flying through: its density has the
+            // flight's probability, per wavelength (iris/render/medium.hpp)
+            sampled_spectrum<C> pbt = pb;
+            float pass0 = 1.0f;
+            if (m_hero.scatters(medium)) {
+                const sampled_spectrum<C> ss = m_hero.scattering[medium](wl);
+                for (std::size_t k = 0; k < C; ++k) pbt[k] = pb[k] * exp_neg(ss[k], d);
+                pass0 = exp_neg(ss[0], d);
+            }
+            const float w_light = balance_heuristic(pl, pbt[0]);
             hp.lc += hp.beta * f * m_hero.transmittance(medium, wl, d) * m_hero.emitted(ls->le, wl) /
-                     (pl * hwss_light_ratio_sum(hp.rho, pb, pl));
-            bterm.template light_absorbed<B>(ls->le, w_light, pl, medium, d);
+                     (pl * hwss_light_ratio_sum(hp.rho, pbt, pl));
+            bterm.template light_absorbed<B>(ls->le, w_light, pl, medium, d, pass0);
         }
     }
 

@@ -37,6 +37,7 @@
 #include "iris/render/bins.hpp"
 #include "iris/render/lights/light.hpp"
 #include "iris/render/materials/bxdf.hpp"
+#include "iris/render/medium.hpp"
 #include "iris/spectrum/color.hpp"
 #include "iris/render/spectral_bands.hpp"
 #include "iris/spectrum/sampled.hpp"
@@ -64,7 +65,7 @@ struct no_propagation {
     void follow(const B&, const glm::vec3&, const bsdf_sample<C>&) noexcept {}
     void attenuate(std::uint32_t, float) noexcept {}
     template <class B>
-    void light_absorbed(const emission_ref&, float, float, std::uint32_t, float) noexcept {}
+    void light_absorbed(const emission_ref&, float, float, std::uint32_t, float, float) noexcept {}
     static constexpr float roulette_max(float m) noexcept { return m; }
     void survive(float) noexcept {}
     void add_xyz(xyz&) const noexcept {}
@@ -167,12 +168,14 @@ public:
         else add_light(m_f, le, k);
     }
 
-    /// \brief `light`, for a shadow ray that crosses a length d of absorbing material m: the
-    /// bins' value toward the light times exp(−σ_a(λ_b)·d) (iris/render/absorption.hpp).
+    /// \brief `light`, for a shadow ray that crosses a length d of medium m: the bins' value
+    /// toward the light times exp(−σ_a(λ_b)·d) (iris/render/absorption.hpp) and, in a medium
+    /// that scatters, the hero's e^{−σ_s(λ₀)·d} = `pass0`: the bins see the hero's scattering
+    /// and their own absorption (docs/method.md §10).
     template <class B>
-    void light_absorbed(const emission_ref& r, float w, float pl, std::uint32_t m, float d) noexcept {
+    void light_absorbed(const emission_ref& r, float w, float pl, std::uint32_t m, float d, float pass0) noexcept {
         if (!m_on) return;
-        float k = w / pl;
+        float k = w / pl * pass0;
         const view le = emitted(r, k);
         const view sigma = m_t->absorption[m].at(m_bp, m_att_scratch);
         sampled_spectrum<Bins> f;
@@ -182,8 +185,10 @@ public:
         }
         add_light(f, le, k);
     }
-    /// \brief The hero's ray crossed a length t of absorbing material m: t_b ← t_b ·
-    /// exp(−σ_a(λ_b)·t).
+    /// \brief The hero's ray crossed a length t of medium m (to a surface, or to a scattering
+    /// in it): t_b ← t_b · exp(−σ_a(λ_b)·t). In a medium that scatters this is the whole of
+    /// the bins' weight: the hero's flight, sampled on its own σ_s, is taken as theirs
+    /// (docs/method.md §10).
     void attenuate(std::uint32_t m, float t) noexcept {
         if (!m_on) return;
         const view sigma = m_t->absorption[m].at(m_bp, m_att_scratch);
@@ -200,6 +205,7 @@ public:
     template <class B, std::size_t C>
     void follow(const B& bxdf, const glm::vec3& wo, const bsdf_sample<C>& s) noexcept {
         if (!m_on) return;
+        if constexpr (is_phase_v<B>) return;  // sampled exactly: f/p = 1 at every bin (iris/render/medium.hpp)
         const float inv_p0 = 1.0f / s.pdf[0];
         if constexpr (separable_bxdf<B>) m_tb_max = scale(m_refl, B::cos_factor(wo, s.wi) * inv_p0);
         else m_tb_max = scale(bxdf.template follow<Bins>(wo, s.wi, s.kind, spectra()), inv_p0);

@@ -41,7 +41,9 @@
 /// extra draws come from slots of its own past the table (`overflow_slot`), padded as the
 /// slots past bounce 50 are — never a number another draw of the sample reads, at the cost
 /// of their stratification (`overflows()` counts the bounces that overflowed; the path
-/// tracer never does, tests/render/sampler_test.cpp). The `independent`
+/// tracer never does, tests/render/sampler_test.cpp). A free flight through a scattering
+/// medium reads one padded slot of its bounce's own (`next_medium`), outside this layout: the
+/// distance is not stratified across samples (docs/method.md §10). The `independent`
 /// sampler ignores the layout and numbers its draws consecutively, as iris always did: its
 /// images are the ones of the releases before the samplers.
 ///
@@ -154,6 +156,21 @@ public:
         }
         const point p = at(take(), true);
         return {p.x, p.y};
+    }
+
+    /// \brief The number of the current bounce's free flight through a scattering medium
+    /// (iris/render/medium.hpp): one padded slot per bounce (`medium_slot`), read without
+    /// moving the bounce's own slots, so scenes without media keep every number they had; the
+    /// next number for `independent`. A bounce flies at most once (a scattering in the
+    /// medium is the next bounce).
+    constexpr float next_medium() noexcept {
+        if (m_kind == sampler_kind::independent) return m_rng.next();
+        return at(medium_slot(m_bounce), false).x;
+    }
+    /// \brief Bounce k's free-flight slot: past the table and every bounce's slots, below the
+    /// overflow slots (`overflow_slot`).
+    static constexpr std::uint32_t medium_slot(int k) noexcept {
+        return 0x40000000u + static_cast<std::uint32_t>(k + 1);
     }
 
     /// \brief Move to bounce k's first slot (a no-op for `independent`).

@@ -74,6 +74,22 @@ inline bool is_dispersive(const ior_model& m) noexcept {
 /// delta BSDF).
 inline constexpr float smooth_alpha = 1e-3f;
 
+/// \brief Scattering in a homogeneous medium (docs/method.md §10): the scattering coefficient
+/// σ_s(λ) ≥ 0 per scene unit and the Henyey–Greenstein asymmetry g ∈ (−1, 1), the same at
+/// every wavelength (g > 0 scatters forward, g = 0 isotropically).
+struct medium_scattering {
+    tabulated_spectrum sigma_s;
+    float g = 0.0f;
+};
+
+/// \brief The scene's own medium (fog, haze): it fills everything outside the solids that
+/// bound a medium or glass of their own (docs/method.md §10); the camera and the lights are
+/// in it. Absorption σ_a(λ) and scattering, each optional.
+struct medium_desc {
+    std::optional<tabulated_spectrum> absorption = std::nullopt;
+    std::optional<medium_scattering> scattering = std::nullopt;
+};
+
 namespace material {
 
 /// \brief A thin dielectric film on a surface (soap, oil, an anti-reflection or oxide
@@ -100,11 +116,13 @@ struct diffuse {
 /// exp(−σ_a(λ)·t), σ_a ≥ 0 per scene unit (Beer–Lambert; docs/method.md §8). Its inside is
 /// the side its normals point away from. With `film`, a thin film on its outside face
 /// replaces the bare interface's Fresnel reflectance R by the film's (transmission 1 − R: the
-/// film is lossless), the same from both sides.
+/// film is lossless), the same from both sides. With `scattering`, its inside is a
+/// homogeneous scattering medium (with `absorption` as its σ_a; docs/method.md §10).
 struct dielectric {
     ior_model ior = constant_ior{1.5};
     float roughness = 0.0f;
     std::optional<tabulated_spectrum> absorption = std::nullopt;
+    std::optional<medium_scattering> scattering = std::nullopt;
     std::optional<thin_film> film = std::nullopt;
 };
 
@@ -286,6 +304,8 @@ struct scene_features {
     bool has_delta_lights = false;     ///< point, spot or distant lights (no BSDF-only estimate)
     bool absorbing = false;            ///< a dielectric with `absorption`
     bool thin_film = false;            ///< a dielectric or conductor with a `film`
+    bool scattering = false;           ///< a dielectric with `scattering`, or a scene medium that scatters
+    bool scene_medium = false;         ///< the scene's own medium (`scene_desc::medium`)
     std::vector<std::string> emitter_spds;  ///< distinct SPD names of all emitters
 
     bool dispersive() const noexcept { return dispersive_specular || dispersive_rough; }
@@ -303,6 +323,7 @@ struct scene_desc {
     std::vector<shape_desc> shapes;
     std::vector<light_desc> lights;  ///< emit through `emitters[light.emitter]`
     std::optional<environment_desc> environment;
+    std::optional<medium_desc> medium;  ///< the medium outside every solid (fog), if any
     std::vector<image_texture> textures;  ///< indexed by the materials that use them
     /// What loading approximated or ignored, one sentence each (a pbrt-v4 file's lens, pixel
     /// filter, …): the tools print them as warnings (`iris::scene::approximations`).
@@ -326,6 +347,7 @@ struct scene_desc {
             if (!used[i]) continue;
             if (const auto* d = std::get_if<material::dielectric>(&materials[i])) {
                 f.absorbing |= d->absorption.has_value();
+                f.scattering |= d->scattering.has_value();
                 f.thin_film |= d->film.has_value();
                 const bool disp = is_dispersive(d->ior);
                 if (d->roughness >= smooth_alpha) f.dispersive_rough |= disp;
@@ -352,6 +374,10 @@ struct scene_desc {
             add(environment->spd_name);
         }
         f.has_delta_lights = !lights.empty();
+        if (medium) {
+            f.scene_medium = true;
+            f.scattering |= medium->scattering.has_value();
+        }
         return f;
     }
 };

@@ -202,14 +202,24 @@ status render(const prepared_scene& prepared, const options& opt, film& out, con
     const int w = opt.width > 0 ? opt.width : scene.camera.width;
     const int ht = opt.height > 0 ? opt.height : scene.camera.height;
     if (w <= 0 || ht <= 0) throw std::invalid_argument(fmt::format("image size must be positive, got {}x{}", w, ht));
-    if ((opt.estimator == "light" || opt.estimator == "bdpt") &&
-        std::any_of(scene.materials.begin(), scene.materials.end(), [](const material_desc& m) {
+    if (opt.estimator == "light" || opt.estimator == "bdpt") {
+        const bool absorbs = std::any_of(scene.materials.begin(), scene.materials.end(), [](const material_desc& m) {
             const auto* d = std::get_if<material::dielectric>(&m);
             return d && d->absorption;
-        }))
-        throw std::invalid_argument(fmt::format("the {} estimator does not render absorbing dielectrics yet; use nee-mis "
-                                                "(or bsdf-only) for a scene with an 'absorption'",
-                                                opt.estimator));
+        });
+        const bool scatters = std::any_of(scene.materials.begin(), scene.materials.end(), [](const material_desc& m) {
+            const auto* d = std::get_if<material::dielectric>(&m);
+            return d && d->scattering;
+        });
+        if (scatters || scene.medium)
+            throw std::invalid_argument(fmt::format("the {} estimator does not render participating media yet; use nee-mis "
+                                                    "(or bsdf-only) for a scene with 'scattering' or a scene 'medium'",
+                                                    opt.estimator));
+        if (absorbs)
+            throw std::invalid_argument(fmt::format("the {} estimator does not render absorbing dielectrics yet; use nee-mis "
+                                                    "(or bsdf-only) for a scene with an 'absorption'",
+                                                    opt.estimator));
+    }
     if (opt.start_spp > 0 && (out.width() != w || out.height() != ht))
         throw std::invalid_argument(fmt::format("the film to resume is {}x{}, the render {}x{}", out.width(), out.height(), w, ht));
     const spectral_bands bands{opt.spectral_bins, scene.lambda_min, scene.lambda_max};

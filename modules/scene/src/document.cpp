@@ -190,6 +190,35 @@ std::optional<tabulated_spectrum> read_dielectric_absorption(const reader& r) {
     return tabulated_spectrum(std::move(lambda), std::move(sigma_a), outside::clamp);
 }
 
+/// A medium's scattering (docs/scene-format.md): {"sigma_s": σ_s, "g": asymmetry}.
+medium_scattering read_scattering(const reader& r) {
+    if (!r.is_object())
+        r.fail("expected a scattering medium {\"sigma_s\": per scene unit, \"g\": asymmetry in (-1, 1)}, got " +
+               describe(r.value()));
+    r.expect_object({"sigma_s", "g"});
+    medium_scattering m;
+    m.sigma_s = detail::read_scattering_coefficient(r.at("sigma_s"));
+    if (r.has("g"))
+        m.g = static_cast<float>(r.at("g").number_in(-0.99, 0.99, false, false, "a Henyey-Greenstein asymmetry g in [-0.99, 0.99]"));
+    return m;
+}
+
+/// The scene's own medium (docs/scene-format.md): absorption (as a dielectric's) and/or scattering.
+std::optional<medium_desc> read_scene_medium(const reader& top) {
+    if (!top.has("medium")) return std::nullopt;
+    const reader r = top.at("medium");
+    if (!r.is_object())
+        r.fail("expected a medium {\"absorption\": ..., \"scattering\": {\"sigma_s\": ..., \"g\": ...}}, got " +
+               describe(r.value()));
+    r.expect_object({"absorption", "transmittance", "transmittance_depth", "scattering"});
+    medium_desc m;
+    m.absorption = read_dielectric_absorption(r);
+    if (r.has("scattering")) m.scattering = read_scattering(r.at("scattering"));
+    if (!m.absorption && !m.scattering)
+        r.fail("a medium needs an 'absorption' (or a 'transmittance' with its 'transmittance_depth') or a 'scattering'");
+    return m;
+}
+
 /// A thin film (docs/scene-format.md): {"thickness_nm": d, "ior": n} — any index form of a
 /// dielectric's `ior`.
 material::thin_film read_film(const reader& r, const detail::domain& d) {
@@ -219,12 +248,13 @@ material_desc read_material(const reader& r, const detail::domain& d, const std:
         return material::diffuse{detail::read_reflectance(refl)};
     }
     if (type == "dielectric") {
-        r.expect_object({"type", "ior", "roughness", "absorption", "transmittance", "transmittance_depth", "film"});
+        r.expect_object({"type", "ior", "roughness", "absorption", "transmittance", "transmittance_depth", "scattering", "film"});
         material::dielectric m;
         m.ior = detail::read_ior(r.at("ior"), d);
         if (r.has("roughness"))
             m.roughness = static_cast<float>(r.at("roughness").number_in(0.0, 1.0, false, false, "a GGX roughness"));
         m.absorption = read_dielectric_absorption(r);
+        if (r.has("scattering")) m.scattering = read_scattering(r.at("scattering"));
         if (r.has("film")) m.film = read_film(r.at("film"), d);
         return m;
     }
@@ -570,7 +600,8 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
     }
 
     const reader top(root, "", ctx);
-    top.expect_object({"name", "description", "spectral_domain", "camera", "materials", "emitters", "environment", "lights", "shapes"},
+    top.expect_object({"name", "description", "spectral_domain", "camera", "materials", "emitters", "environment", "lights",
+                       "medium", "shapes"},
                       "a scene object {\"camera\": ..., \"materials\": ..., \"shapes\": [...]}");
 
     scene_document doc;
@@ -613,6 +644,7 @@ scene_document parse_scene_document(std::string_view text, const std::string& so
     std::map<std::string, std::uint32_t> used_named;
 
     s.environment = read_environment(top, dom, base_dir, doc.environment_image);
+    s.medium = read_scene_medium(top);
 
     if (!top.has("shapes")) top.fail("missing key 'shapes' (the list of shapes); an empty scene cannot be rendered");
     const reader shapes = top.at("shapes");

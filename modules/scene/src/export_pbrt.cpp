@@ -109,6 +109,9 @@ struct material_writer {
             throw error(s.name, 0, "", "material '" + name +
                                            "' absorbs (an 'absorption'): pbrt-v4 expresses that as a medium inside the "
                                            "dielectric, which iris-scene export --pbrt does not write yet");
+        if (d.scattering)
+            throw error(s.name, 0, "", "material '" + name +
+                                           "' holds a scattering medium: iris-scene export --pbrt does not write media yet");
         if (d.film)
             throw error(s.name, 0, "", "material '" + name + "' has a thin 'film', which pbrt-v4 has no material for");
         std::string out = "\"string type\" [ \"dielectric\" ]\n    ";

@@ -74,11 +74,21 @@ void hash_film(hasher& h, const std::optional<material::thin_film>& f) {
     hash_ior(h, f->ior);
 }
 
+/// \brief A medium's scattering, when there is one (only then: scenes without keep their fingerprints).
+void hash_scattering(hasher& h, const std::optional<medium_scattering>& m) {
+    static_assert(sizeof(medium_scattering) == sizeof(tabulated_spectrum) + 8, "fingerprint: hash every field of medium_scattering");
+    if (!m) return;
+    h(std::string_view("scattering"));
+    h(m->sigma_s);
+    h(m->g);
+}
+
 /// \brief Every field of material `x` (a new field changes its size and stops the build).
 template <class T>
 void hash_material(hasher& h, const T& x) {
     if constexpr (std::is_same_v<T, material::dielectric>) {
         static_assert(sizeof(T) == sizeof(ior_model) + 8 + sizeof(std::optional<tabulated_spectrum>) +
+                                       sizeof(std::optional<medium_scattering>) +
                                        sizeof(std::optional<material::thin_film>),
                       "fingerprint: hash every field of material::dielectric");  // (roughness, padded)
         h(x.roughness);
@@ -86,6 +96,7 @@ void hash_material(hasher& h, const T& x) {
         if (x.absorption) h(*x.absorption);  // (only when present: older scenes keep their fingerprints)
         hash_ior(h, x.ior);
         hash_film(h, x.film);
+        hash_scattering(h, x.scattering);
     } else if constexpr (std::is_same_v<T, material::diffuse>) {
         // every field: a new one changes the size and stops the build here
         static_assert(sizeof(T) == sizeof(tabulated_spectrum) + sizeof(std::optional<std::uint32_t>),
@@ -176,6 +187,14 @@ std::uint64_t fingerprint(const iris::scene_desc& scene) {
             for (const auto& w : m->weights) h(w);
             for (const auto& b : scene.environment->basis) h(b);
         }
+    }
+    if (scene.medium) {  // likewise
+        static_assert(sizeof(medium_desc) == sizeof(std::optional<tabulated_spectrum>) + sizeof(std::optional<medium_scattering>),
+                      "fingerprint: hash every field of medium_desc");
+        h(std::string_view("medium"));
+        h(scene.medium->absorption.has_value());
+        if (scene.medium->absorption) h(*scene.medium->absorption);
+        hash_scattering(h, scene.medium->scattering);
     }
     if (!scene.textures.empty()) {  // likewise
         h(scene.textures.size());

@@ -110,6 +110,18 @@ tabulated_spectrum read_absorption(const reader& r) {
            "\"values\": [...]}; got " + describe(r.value()));
 }
 
+tabulated_spectrum read_scattering_coefficient(const reader& r) {
+    constexpr double max_sigma = 1e9;
+    if (r.is_number()) {
+        const double v = r.number_in(0.0, max_sigma, false, false, "a scattering coefficient (per scene unit)");
+        return tabulated_spectrum({360.0, 830.0}, {v, v}, outside::clamp);
+    }
+    if (r.is_object() && (r.has("wavelengths") || r.has("values")))
+        return read_table(r, 0.0, max_sigma, outside::clamp, "a scattering coefficient table (per scene unit)");
+    r.fail("expected a scattering coefficient σ_s ≥ 0 per scene unit: a number or {\"wavelengths\": [...], "
+           "\"values\": [...]}; got " + describe(r.value()));
+}
+
 named_spd read_spd(const reader& r) {
     if (r.is_string()) {
         const std::string name = r.string();

@@ -23,6 +23,8 @@ tabulated_spectrum read_reflectance(const reader& r);
 
 /// \brief An absorption coefficient σ_a ≥ 0 per scene unit: a number (grey) or a table.
 tabulated_spectrum read_absorption(const reader& r);
+/// A medium's scattering coefficient σ_s ≥ 0 per scene unit: a number or a table.
+tabulated_spectrum read_scattering_coefficient(const reader& r);
 
 /// \brief An emission SPD and the name the feature summary reports for it.
 struct named_spd {
