@@ -177,7 +177,7 @@ std::optional<tabulated_spectrum> read_dielectric_absorption(const reader& r) {
     if (sigma && (colour || depth))
         r.at(colour ? "transmittance" : "transmittance_depth")
             .fail("give either 'absorption' or 'transmittance' with 'transmittance_depth', not both");
-    if (sigma) return detail::read_absorption(r.at("absorption"));
+    if (sigma) return detail::read_coefficient(r.at("absorption"), detail::absorption_coefficient);
     if (colour != depth)
         r.at(colour ? "transmittance" : "transmittance_depth")
             .fail(colour ? "a 'transmittance' needs the 'transmittance_depth' (scene units) it is kept over"
@@ -197,7 +197,7 @@ medium_scattering read_scattering(const reader& r) {
                describe(r.value()));
     r.expect_object({"sigma_s", "g"});
     medium_scattering m;
-    m.sigma_s = detail::read_scattering_coefficient(r.at("sigma_s"));
+    m.sigma_s = detail::read_coefficient(r.at("sigma_s"), detail::scattering_coefficient);
     if (r.has("g"))
         m.g = static_cast<float>(r.at("g").number_in(-0.99, 0.99, false, false, "a Henyey-Greenstein asymmetry g in [-0.99, 0.99]"));
     return m;

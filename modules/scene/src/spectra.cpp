@@ -98,27 +98,16 @@ tabulated_spectrum read_reflectance(const reader& r) {
            "{\"wavelengths\": [...], \"values\": [...]}; got " + describe(r.value()));
 }
 
-tabulated_spectrum read_absorption(const reader& r) {
+tabulated_spectrum read_coefficient(const reader& r, const coefficient& c) {
     constexpr double max_sigma = 1e9;
+    const std::string what = c.what;
     if (r.is_number()) {
-        const double v = r.number_in(0.0, max_sigma, false, false, "an absorption coefficient (per scene unit)");
+        const double v = r.number_in(0.0, max_sigma, false, false, what + " (per scene unit)");
         return tabulated_spectrum({360.0, 830.0}, {v, v}, outside::clamp);
     }
     if (r.is_object() && (r.has("wavelengths") || r.has("values")))
-        return read_table(r, 0.0, max_sigma, outside::clamp, "an absorption table (per scene unit)");
-    r.fail("expected an absorption coefficient σ_a ≥ 0 per scene unit: a number or {\"wavelengths\": [...], "
-           "\"values\": [...]}; got " + describe(r.value()));
-}
-
-tabulated_spectrum read_scattering_coefficient(const reader& r) {
-    constexpr double max_sigma = 1e9;
-    if (r.is_number()) {
-        const double v = r.number_in(0.0, max_sigma, false, false, "a scattering coefficient (per scene unit)");
-        return tabulated_spectrum({360.0, 830.0}, {v, v}, outside::clamp);
-    }
-    if (r.is_object() && (r.has("wavelengths") || r.has("values")))
-        return read_table(r, 0.0, max_sigma, outside::clamp, "a scattering coefficient table (per scene unit)");
-    r.fail("expected a scattering coefficient σ_s ≥ 0 per scene unit: a number or {\"wavelengths\": [...], "
+        return read_table(r, 0.0, max_sigma, outside::clamp, what + " table (per scene unit)");
+    r.fail("expected " + what + " " + c.symbol + " ≥ 0 per scene unit: a number or {\"wavelengths\": [...], "
            "\"values\": [...]}; got " + describe(r.value()));
 }
 

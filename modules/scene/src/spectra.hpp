@@ -21,10 +21,16 @@ struct domain {
 /// \brief A reflectance in [0, 1]: number, {"srgb"}, {"linear_srgb"} or a table.
 tabulated_spectrum read_reflectance(const reader& r);
 
-/// \brief An absorption coefficient σ_a ≥ 0 per scene unit: a number (grey) or a table.
-tabulated_spectrum read_absorption(const reader& r);
-/// A medium's scattering coefficient σ_s ≥ 0 per scene unit: a number or a table.
-tabulated_spectrum read_scattering_coefficient(const reader& r);
+/// \brief Which of a medium's coefficients is read, for messages.
+struct coefficient {
+    const char* what;    ///< "an absorption coefficient" or "a scattering coefficient"
+    const char* symbol;  ///< "σ_a" or "σ_s"
+};
+inline constexpr coefficient absorption_coefficient{"an absorption coefficient", "σ_a"},
+    scattering_coefficient{"a scattering coefficient", "σ_s"};
+/// \brief A medium's absorption or scattering coefficient ≥ 0 per scene unit: a number (grey)
+/// or a table.
+tabulated_spectrum read_coefficient(const reader& r, const coefficient& c);
 
 /// \brief An emission SPD and the name the feature summary reports for it.
 struct named_spd {
