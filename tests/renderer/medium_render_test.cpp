@@ -183,15 +183,7 @@ TEST(Medium, BsdfOnlyAgreesWithNeeMisInFog) {
             a.height = 18;
             const auto ra = iris_test::grid_estimates(s, a, 4, 3);
             const auto wa = iris_test::grid_estimates(s, a, 1, 1)[0];
-            double worst = 0.0;
-            for (std::size_t r = 0; r < ra.size(); ++r)
-                for (std::size_t c = 0; c < 3; ++c) {
-                    const double se = std::hypot(ra[r].se[c], rb[r].se[c]);
-                    if (!(se > 0.0)) continue;
-                    worst = std::max(worst, std::fabs(ra[r].mean[c] - rb[r].mean[c]) / se);
-                }
-            for (std::size_t c = 0; c < 3; ++c)
-                worst = std::max(worst, std::fabs(wa.mean[c] - wb.mean[c]) / std::hypot(wa.se[c], wb.se[c]));
+            const double worst = std::max(iris_test::max_abs_z(ra, rb), iris_test::max_abs_z({wa}, {wb}));
             const double detectable = (z_max + 1.2816) * std::hypot(wa.se[1], wb.se[1]) / wb.mean[1];
             std::printf("fogged room, %s fog, %s: Y nee-mis %.5f ± %.5f, bsdf-only %.5f ± %.5f; max |z| %.2f "
                         "(threshold %.2f); detects %.1f %%\n",

@@ -92,6 +92,19 @@ inline std::vector<region_estimate> grid_estimates(const iris::scene_desc& scene
                             [&](int x, int y, int w, int h) { return (y * ny / h) * nx + x * nx / w; });
 }
 
+/// \brief Two independent estimates of the same regions compared: the largest |z| of the
+/// difference of their means, (a − b)/√(se_a² + se_b²), over every region and channel
+/// (a region without spread in either is skipped).
+inline double max_abs_z(const std::vector<region_estimate>& a, const std::vector<region_estimate>& b) {
+    double worst = 0.0;
+    for (std::size_t r = 0; r < a.size() && r < b.size(); ++r)
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double se = std::hypot(a[r].se[c], b[r].se[c]);
+            if (se > 0.0) worst = std::fmax(worst, std::fabs(a[r].mean[c] - b[r].mean[c]) / se);
+        }
+    return worst;
+}
+
 /// \brief The two-sided standard normal quantile z with P(|Z| > z) = p (bisection on erfc;
 /// enough for thresholds).
 inline double normal_quantile_two_sided(double p) {
