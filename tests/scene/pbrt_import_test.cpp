@@ -246,7 +246,22 @@ TEST(PbrtImport, BadInputIsAnErrorAtFileLineAndColumn) {
         {camera + "WorldBegin\nTranslate 1 2 nan\n", "test.pbrt:5:15: expected Translate's x y z (a number), found 'nan'"},
         {camera + "WorldBegin\nTranslate 1 2 1e999\n", "test.pbrt:5:15: '1e999' is not a number"},
         {camera + "WorldBegin\nCamera \"perspective\"\n", "Camera is allowed only before WorldBegin"},
-        {scene("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"), "participating media are not supported yet"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"uniformgrid\"\n"), "test.pbrt:9:21: medium type 'uniformgrid' is not supported"},
+        {scene("MakeNamedMedium \"m\" \"rgb sigma_s\" [ 1 1 1 ]\n"), "test.pbrt:9:1: MakeNamedMedium \"m\" has no \"string type\""},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\nMakeNamedMedium \"m\" \"string type\" \"homogeneous\"\n"),
+         "test.pbrt:10:1: medium 'm' is defined twice"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"string preset\" \"Skin1\"\n"), "\"preset\" (pbrt-v4's measured media) is not supported"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"float g\" 1\n"), "\"float g\" must lie in [-0.99, 0.99]"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"spectrum sigma_a\" [ 400 -1 700 1 ]\n"),
+         "test.pbrt:9:49: medium 'm': \"sigma_a\" times scale must lie in [0, 1e9]"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"float scale\" -2\n"), "\"float scale\" must lie in [0, 1e9]"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"rgb Le\" [ 1 1 1 ]\n"), "emissive media (\"Le\") are not supported"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"float density\" 1\n"), "parameter \"float density\" of MakeNamedMedium \"m\" is not supported"},
+        {scene("MediumInterface \"nope\" \"\"\nShape \"sphere\"\n"), "test.pbrt:10:1: the shape's MediumInterface names medium 'nope', which no MakeNamedMedium defines"},
+        {"MediumInterface \"fog\"\n" + scene(""), "test.pbrt:3:1: the camera (its MediumInterface) names medium 'fog'"},
+        {scene("Material \"interface\"\n"), "material \"interface\" (a surface that only bounds a medium) is not supported yet"},
+        {scene("MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\nMediumInterface \"\" \"m\"\nMaterial \"dielectric\"\nShape \"sphere\"\n"),
+         "test.pbrt:12:1: the shape's outside medium is 'm' but the camera's is '': iris has one medium outside the solids"},
         {scene("LightSource \"point\" \"float illuminance\" 10\n"), "test.pbrt:9:21: parameter \"float illuminance\" of LightSource \"point\" is not supported"},
         {scene("Shape \"sphere\" \"float radius\" [ 1 2 ]\n"), "takes 1 value, got 2"},
         // mismatched nesting, values that overflow, bad geometry (found by review)
@@ -657,6 +672,56 @@ TEST(PbrtImport, AnRgbIndexIsPbrtsUnboundedSpectrum) {
         EXPECT_NEAR(c->ior->eta(l), 2.2 * eta(l), 1e-9) << l;
         EXPECT_NEAR(c->ior->k(l), 7.8 * k(l), 1e-9) << l;
     }
+}
+
+// pbrt-v4's homogeneous media (docs/pbrt-import.md, "Media"): the camera's medium fills the
+// scene outside the solids; a dielectric bounding a medium holds it; a dielectric that is no
+// medium boundary is filled with the camera's medium, as pbrt-v4 keeps the ray's medium there.
+TEST(PbrtImport, HomogeneousMediaFillTheSceneAndTheDielectricsThatBoundThem) {
+    const std::string fog = "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 0.02 0.04 0.08 ]\n"
+                            "  \"rgb sigma_s\" [ 0.1 0.1 0.1 ] \"float scale\" 2 \"float g\" 0.4\nMediumInterface \"\" \"fog\"\n";
+    const std::string world =
+        "MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\" \"spectrum sigma_s\" [ 400 3 700 1 ] \"spectrum sigma_a\" [ 400 0 700 0 ]\n"
+        "Material \"dielectric\" \"float eta\" 1.4\n"
+        "AttributeBegin\n MediumInterface \"smoke\" \"fog\"\n Shape \"sphere\"\nAttributeEnd\n"
+        "AttributeBegin\n Translate 3 0 0\n Shape \"sphere\"\nAttributeEnd\n"
+        "AttributeBegin\n MediumInterface \"smoke\" \"fog\"\n Translate -3 0 0\n Shape \"sphere\"\nAttributeEnd\n"
+        "Material \"diffuse\"\nShape \"sphere\" \"float radius\" 0.5\n";
+    const auto s = import(fog + scene(world));
+    ASSERT_TRUE(s.medium.has_value());
+    ASSERT_TRUE(s.medium->absorption.has_value());
+    ASSERT_TRUE(s.medium->scattering.has_value());
+    const auto a = iris::rgb_to_sigmoid({0.02 / 0.16, 0.04 / 0.16, 0.08 / 0.16});
+    for (double l : {420.0, 550.0, 680.0}) {
+        EXPECT_NEAR((*s.medium->absorption)(l), 2.0 * 0.16 * a(l), 1e-9) << l;  // scale × pbrt-v4's unbounded rgb
+        EXPECT_NEAR(s.medium->scattering->sigma_s(l), 0.2, 1e-9) << l;
+    }
+    EXPECT_FLOAT_EQ(s.medium->scattering->g, 0.4f);
+    ASSERT_EQ(s.shapes.size(), 5u);
+    const auto* smoke = std::get_if<iris::material::dielectric>(&s.materials[s.shapes[1].material]);
+    ASSERT_NE(smoke, nullptr);
+    EXPECT_FALSE(smoke->absorption.has_value());  // σ_a = 0 everywhere: no absorption
+    ASSERT_TRUE(smoke->scattering.has_value());
+    EXPECT_NEAR(smoke->scattering->sigma_s(400.0), 3.0, 1e-9);
+    EXPECT_NEAR(smoke->scattering->sigma_s(700.0), 1.0, 1e-9);
+    EXPECT_EQ(s.shapes[3].material, s.shapes[1].material);  // one material per (material, medium)
+    const auto* fogged = std::get_if<iris::material::dielectric>(&s.materials[s.shapes[2].material]);
+    ASSERT_NE(fogged, nullptr);
+    ASSERT_TRUE(fogged->absorption.has_value() && fogged->scattering.has_value());
+    EXPECT_NEAR((*fogged->absorption)(550.0), (*s.medium->absorption)(550.0), 1e-12);
+    EXPECT_NEAR(fogged->scattering->sigma_s(550.0), 0.2, 1e-9);
+    EXPECT_TRUE(std::holds_alternative<iris::material::diffuse>(s.materials[s.shapes[4].material]));
+
+    // no camera medium: no scene medium; an opaque shape's inside medium is a note
+    const std::string opaque = "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\nMediumInterface \"m\" \"\"\nShape \"sphere\"\n";
+    const auto o = import(scene(opaque));
+    EXPECT_FALSE(o.medium.has_value());
+    bool noted = false;
+    for (const auto& n : o.notes) noted |= n.find("the inside medium 'm' of an opaque shape is not modelled") != std::string::npos;
+    EXPECT_TRUE(noted);
+    iris::scene::pbrt_import_options strict;
+    strict.strict = true;
+    EXPECT_NE(error_of(scene(opaque), strict).find("(an error under --strict)"), std::string::npos);
 }
 
 // pbrt-v4's film records radiance times its imaging ratio, shutter time × ISO / 100: the

@@ -299,6 +299,15 @@ struct graphics_state {
         double power = 0.0;
     };
     std::shared_ptr<const powered_light> area_power;
+    /// pbrt-v4's MediumInterface: the named media on each side of the shapes that follow
+    /// ("" = none); the outside one is also the camera's (docs/pbrt-import.md, "Media").
+    std::string inside_medium, outside_medium;
+};
+
+/// The media a shape was read under, resolved once the file is read (`resolve_media`).
+struct shape_media {
+    std::string inside, outside;
+    location at;
 };
 
 class importer {
@@ -329,6 +338,7 @@ public:
         for (const auto& s : m_doc.shapes) light |= s.emitter.has_value();
         if (!light) fail(m_end, "the scene has no light (no AreaLightSource on a shape, no LightSource)");
         imaging_ratio();
+        resolve_media();
         m_doc.desc.notes = std::move(m_notes);
         return std::move(m_doc);
     }
@@ -665,19 +675,21 @@ private:
             const auto it = m_objects.find(n);
             if (it == m_objects.end()) fail(t.at, "unknown object '" + n + "' (no ObjectBegin before it)");
             if (m_object) fail(t.at, "ObjectInstance inside ObjectBegin");
-            for (shape_spec s : it->second) {  // its orientation is the definition's
+            const auto& media = m_object_media[n];
+            for (std::size_t i = 0; i < it->second.size(); ++i) {  // its orientation is the definition's
+                shape_spec s = it->second[i];
                 s.transform = glm::mat4(world(m_state.ctm) * glm::dmat4(s.transform));
                 s.name = n + "/" + s.name;
-                add_shape(std::move(s), t.at);
+                add_shape(std::move(s), media[i]);
             }
-        } else if (d == "MakeNamedMedium" || d == "MediumInterface") {
-            if (d == "MediumInterface") {
-                const std::string a = quoted(t.at, "the inside medium's name");
-                std::string b = a;
-                if (auto p = peek(); p && p->type == token::kind::string) b = next()->text;
-                if (a.empty() && b.empty()) return;  // no media: what iris renders
-            }
-            fail(t.at, d + ": participating media are not supported yet (docs/pbrt-import.md)");
+        } else if (d == "MakeNamedMedium") {
+            named_medium(t);
+        } else if (d == "MediumInterface") {
+            // one name: both sides (pbrt-v4's rule); the names resolve once the file is read
+            m_state.inside_medium = quoted(t.at, "the inside medium's name");
+            m_state.outside_medium = m_state.inside_medium;
+            if (auto p = peek(); p && p->type == token::kind::string)
+                m_state.outside_medium = next()->text;
         } else if (d == "Attribute") {
             fail(t.at, "Attribute: default parameters per target are not supported (docs/pbrt-import.md)");
         } else {
@@ -706,6 +718,7 @@ private:
         auto ps = read_parameters("Camera \"" + type + "\"");
         if (type != "perspective") fail(t.at, "Camera \"" + type + "\": only \"perspective\" is supported");
         m_camera_from_world = m_state.ctm;
+        m_camera_medium = m_state.outside_medium;  // pbrt-v4: the camera is in the current outside medium
         m_coordinate_systems["camera"] = glm::inverse(m_state.ctm);
         m_fov = ps.number("fov", 90.0);
         if (!(m_fov > 0.0 && m_fov < 180.0)) fail(t.at, "\"float fov\" must be in (0, 180) degrees");
@@ -1390,6 +1403,9 @@ private:
                 c.roughness = roughness(ps, true, at);
                 m = c;
             }
+        } else if (type == "interface" || type == "none" || type.empty()) {
+            fail(at, "material \"" + type + "\" (a surface that only bounds a medium) is not supported yet: iris's media fill the "
+                     "scene or a dielectric (docs/pbrt-import.md, \"Media\")");
         } else {
             fail(at, "material type '" + type + "' is not supported (iris: diffuse, dielectric, conductor, coateddiffuse, "
                      "coatedconductor)");
@@ -1630,10 +1646,11 @@ private:
             s.transform = glm::mat4(m_state.ctm);
             if (s.emitter) fail(t.at, "an area light inside ObjectBegin is not supported");
             m_objects[*m_object].push_back(std::move(s));
+            m_object_media[*m_object].push_back({m_state.inside_medium, m_state.outside_medium, t.at});
             return;
         }
         s.transform = glm::mat4(world(m_state.ctm));
-        add_shape(std::move(s), t.at);
+        add_shape(std::move(s), {m_state.inside_medium, m_state.outside_medium, t.at});
     }
 
     /// The emitter of one shape under an AreaLightSource with "power" φ: pbrt-v4 gives each shape
@@ -1681,10 +1698,103 @@ private:
             default: return 0;
         }
     }
-    void add_shape(shape_spec s, const location& at) {
+    void add_shape(shape_spec s, shape_media media) {
         m_triangles += triangle_count(s);
-        if (m_triangles > max_triangles) fail(at, "the scene would have more than 2^28 triangles: refused");
+        if (m_triangles > max_triangles) fail(media.at, "the scene would have more than 2^28 triangles: refused");
         m_doc.shapes.push_back(std::move(s));
+        m_shape_media.push_back(std::move(media));
+    }
+
+    // -- media (docs/pbrt-import.md, "Media")
+    /// `MakeNamedMedium "name" "string type" "homogeneous"`: σ_a, σ_s (unbounded spectra, pbrt-v4's
+    /// default 1 each) times "scale", Henyey–Greenstein "g".
+    void named_medium(const token& t) {
+        const std::string n = quoted(t.at, "the medium's name");
+        if (n.empty()) fail(t.at, "MakeNamedMedium: the name \"\" means no medium and cannot be defined");
+        if (m_media.count(n)) fail(t.at, "medium '" + n + "' is defined twice");
+        auto ps = read_parameters("MakeNamedMedium \"" + n + "\"");
+        parameter* type = ps.find("type");
+        if (!type) fail(t.at, "MakeNamedMedium \"" + n + "\" has no \"string type\"");
+        const std::string ty = ps.expect(*type, {"string"}, 1).strings[0];
+        if (ty != "homogeneous")
+            fail(type->at, "medium type '" + ty + "' is not supported (iris: homogeneous; density grids are not yet, docs/pbrt-import.md)");
+        if (parameter* p = ps.find("preset"))
+            fail(p->at, "medium '" + n + "': \"preset\" (pbrt-v4's measured media) is not supported: give sigma_a and sigma_s");
+        const double scale = ps.number("scale", 1.0);
+        if (!(scale >= 0.0 && scale <= 1e9)) fail(t.at, "medium '" + n + "': \"float scale\" must lie in [0, 1e9]");
+        auto coefficient = [&](const char* name) {
+            auto v = spectrum(ps, name, spectrum_use::unbounded);
+            tabulated_spectrum table = v ? v->table.scaled(scale) : tabulate([&](double) { return scale; }, outside::clamp);
+            for (double x : table.values())
+                if (!(x >= 0.0 && x <= 1e9))
+                    fail(v ? ps.find(name)->at : t.at, "medium '" + n + "': \"" + std::string(name) + "\" times scale must lie in [0, 1e9] (1/scene unit)");
+            return table;
+        };
+        medium_desc m;
+        tabulated_spectrum sigma_a = coefficient("sigma_a"), sigma_s = coefficient("sigma_s");
+        const double g = ps.number("g", 0.0);
+        if (!(g >= -0.99 && g <= 0.99)) fail(t.at, "medium '" + n + "': \"float g\" must lie in [-0.99, 0.99] (iris's Henyey-Greenstein)");
+        auto any = [](const tabulated_spectrum& s) {
+            for (double x : s.values())
+                if (x > 0.0) return true;
+            return false;
+        };
+        if (any(sigma_a)) m.absorption = std::move(sigma_a);
+        if (any(sigma_s)) m.scattering = medium_scattering{std::move(sigma_s), static_cast<float>(g)};
+        if (auto le = spectrum(ps, "Le", spectrum_use::illuminant); le && any(le->table))
+            fail(ps.find("Le")->at, "medium '" + n + "': emissive media (\"Le\") are not supported");
+        ps.number("Lescale", 1.0);
+        ps.finish();
+        m_media[n] = {std::move(m), t.at};
+    }
+
+    const medium_desc* find_medium(const std::string& n, const location& at, const std::string& where) {
+        if (n.empty()) return nullptr;
+        const auto it = m_media.find(n);
+        if (it == m_media.end()) fail(at, where + " names medium '" + n + "', which no MakeNamedMedium defines");
+        return &it->second.desc;
+    }
+
+    /// pbrt-v4's media onto iris's model (docs/method.md §10): one medium outside the solids —
+    /// the camera's — and a dielectric's own medium inside it. A shape whose two sides name the
+    /// same medium is no boundary (pbrt-v4 keeps the ray's medium there), so a glass without a
+    /// MediumInterface of its own is filled with the camera's medium.
+    void resolve_media() {
+        const medium_desc* outside = find_medium(m_camera_medium, m_camera_at, "the camera (its MediumInterface)");
+        if (outside) m_doc.desc.medium = *outside;
+        std::map<std::pair<std::uint32_t, std::string>, std::uint32_t> filled;  // (material, medium) → material
+        std::set<std::string> opaque_noted;
+        for (std::size_t i = 0; i < m_doc.shapes.size(); ++i) {
+            const shape_media& sm = m_shape_media[i];
+            const bool boundary = sm.inside != sm.outside;
+            find_medium(sm.outside, sm.at, "the shape's MediumInterface");
+            find_medium(sm.inside, sm.at, "the shape's MediumInterface");
+            if (boundary && sm.outside != m_camera_medium)
+                fail(sm.at, "the shape's outside medium is '" + sm.outside + "' but the camera's is '" + m_camera_medium +
+                                "': iris has one medium outside the solids (docs/pbrt-import.md, \"Media\")");
+            shape_spec& s = m_doc.shapes[i];
+            const bool glass = std::holds_alternative<material::dielectric>(m_doc.desc.materials[s.material]);
+            if (!glass) {
+                if (boundary && opaque_noted.insert(sm.inside).second)
+                    note(sm.at, "the inside medium '" + sm.inside + "' of an opaque shape is not modelled: iris's rays never pass an opaque "
+                                "surface (pbrt-v4 sends the rays leaving its back face into it)");
+                continue;
+            }
+            const std::string inside = boundary ? sm.inside : m_camera_medium;
+            if (inside.empty()) continue;
+            const auto key = std::make_pair(s.material, inside);
+            if (auto it = filled.find(key); it != filled.end()) {
+                s.material = it->second;
+                continue;
+            }
+            material::dielectric d = std::get<material::dielectric>(m_doc.desc.materials[s.material]);
+            const medium_desc& m = *find_medium(inside, sm.at, "the shape's MediumInterface");
+            d.absorption = m.absorption;
+            d.scattering = m.scattering;
+            m_doc.desc.materials.push_back(std::move(d));
+            m_doc.desc.material_names.push_back(m_doc.desc.material_names[s.material] + "+" + inside);
+            s.material = filled[key] = static_cast<std::uint32_t>(m_doc.desc.materials.size() - 1);
+        }
     }
 
     pbrt_import_options m_options;
@@ -1717,6 +1827,14 @@ private:
     std::map<std::pair<std::string, std::string>, texture_def> m_textures;  ///< by (kind, name)
     int m_texture_depth = 0;  ///< the nesting of `named_texture` calls
     std::map<std::string, std::vector<shape_spec>> m_objects;
+    std::map<std::string, std::vector<shape_media>> m_object_media;  ///< per object, its shapes' media
+    std::vector<shape_media> m_shape_media;                          ///< per shape of m_doc
+    struct medium_def {
+        medium_desc desc;
+        location at;
+    };
+    std::map<std::string, medium_def> m_media;
+    std::string m_camera_medium;
     std::optional<std::string> m_object;
     location m_object_at, m_camera_at;
     std::optional<std::uint32_t> m_default_material;
