@@ -1,6 +1,7 @@
 // The B term's lattice tables (iris/render/bins.hpp) against direct evaluation.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -156,6 +157,36 @@ TEST(BinTables, OneEntryPerMaterialAndEmitter) {
     EXPECT_NEAR(t.albedo[0](p)[0], 0.25 + 0.5 * 2.5 / 400.0, 1e-6);  // λ = 382.5 nm on the linear ramp
     EXPECT_FLOAT_EQ(t.eta[1](p)[40], 1.5f);
     EXPECT_FLOAT_EQ(t.albedo[1](p)[40], 0.0f);  // a dielectric has no albedo table
+}
+
+// A medium whose σ_a is one number (or none) is read once for every bin (propagation.hpp's
+// `attenuate` and `light_absorbed` take one exponential): `constant` must hold exactly when
+// every bin reads the same value at every jitter, so the shortcut gives the same numbers.
+TEST(BinTables, GreyAbsorptionIsTheSameNumberAtEveryBin) {
+    iris::scene_desc s;
+    const auto flat = [](double v) { return iris::tabulated_spectrum(std::vector<double>{360, 830}, std::vector<double>{v, v}, iris::outside::clamp); };
+    iris::material::dielectric grey{iris::constant_ior{1.5}, 0.0f};
+    grey.absorption = flat(0.7);
+    iris::material::dielectric chromatic = grey;
+    chromatic.absorption = iris::tabulated_spectrum(std::vector<double>{360, 600, 830}, std::vector<double>{0.7, 0.7, 0.7000001},
+                                                    iris::outside::clamp);  // grey but for the last nanometres
+    iris::material::dielectric clear{iris::constant_ior{1.5}, 0.0f};
+    s.materials = {grey, chromatic, clear};
+    s.medium = iris::medium_desc{flat(0.0), std::nullopt};  // the scene's medium: absorbs nothing
+    const iris::bin_tables<80> t(s);
+    ASSERT_EQ(t.grey_absorption.size(), 4u);  // three solids and the scene's medium
+    EXPECT_EQ(t.grey_absorption[0], 1);
+    EXPECT_EQ(t.grey_absorption[1], 0);
+    EXPECT_EQ(t.grey_absorption[2], 1);  // no absorption: zeros
+    EXPECT_EQ(t.grey_absorption[3], 1);
+    for (std::uint32_t m = 0; m < 4; ++m) {
+        if (!t.grey_absorption[m]) continue;
+        std::array<float, 80> scratch;
+        for (float u : jitters()) {
+            const auto v = t.absorption[m].at(t.lattice.position(u), scratch);
+            for (std::size_t b = 1; b < 80; ++b) ASSERT_EQ(v[b], v[0]) << "medium " << m << " bin " << b << " u " << u;
+        }
+    }
 }
 
 }  // namespace

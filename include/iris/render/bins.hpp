@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -164,6 +165,17 @@ public:
 
     /// \brief True if the value comes from the lattice rows (false: evaluated directly).
     bool on_lattice() const noexcept { return !m_exact; }
+
+    /// \brief True if every bin reads the same value at every jitter: empty (zeros), or
+    /// lattice rows holding one number. Each bin's view then blends the same two numbers
+    /// with the same weights, so element 0 of a view stands bit for bit for every element.
+    bool constant() const noexcept {
+        if (m_exact) return false;
+        for (const auto& row : m_rows)
+            for (float v : row)
+                if (!(v == m_rows.front()[0]) || std::signbit(v) != std::signbit(m_rows.front()[0])) return false;
+        return true;
+    }
 
     /// \brief The spectrum at the bins of one sample, read element by element (so that a
     /// loop over the bins can blend the rows as it goes, without a temporary spectrum).
@@ -421,6 +433,9 @@ struct bin_tables {
     std::vector<spectrum> inv_eta2; ///< 1/η², likewise
     std::vector<spectrum> k;        ///< per material: a conductor's k (its η is in `eta`); empty otherwise
     std::vector<spectrum> absorption;  ///< per medium id (iris/render/absorption.hpp): its σ_a; empty where it does not absorb
+    /// Per medium id: its σ_a is the same at every bin (grey, or none): one e^{−σ_a d} serves
+    /// all bins (propagation.hpp), the same numbers as one per bin.
+    std::vector<std::uint8_t> grey_absorption;
     std::vector<spectrum> emission;  ///< indexed as `emission_ref` indexes them
     std::vector<spectrum> film_eta;  ///< per material: a thin film's index; empty otherwise
     spectrum lambda;                 ///< λ_b itself (a film's phase reads it)
@@ -464,6 +479,7 @@ struct bin_tables {
         for (std::uint32_t id = 0; id < medium_count(scene); ++id) {
             if (const tabulated_spectrum* sa = medium_absorption(scene, id)) absorption.emplace_back(lattice, *sa);
             else absorption.emplace_back();
+            grey_absorption.push_back(absorption.back().constant() ? 1 : 0);
         }
         for (const material_desc& m : scene.materials) {
             visit_bxdf(m, [&](const auto& b) {

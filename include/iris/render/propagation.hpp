@@ -179,9 +179,14 @@ public:
         const view le = emitted(r, k);
         const view sigma = m_t->absorption[m].at(m_bp, m_att_scratch);
         sampled_spectrum<Bins> f;
-        for (std::size_t b = 0; b < Bins; ++b) {
-            const float fb = separable_bxdf<B> ? m_refl[b] * m_cos : m_f[b];
-            f[b] = fb * beer_lambert(sigma[b], d);
+        if (m_t->grey_absorption[m]) {  // one exponential for every bin: the same numbers
+            const float e = beer_lambert(sigma[0], d);
+            for (std::size_t b = 0; b < Bins; ++b) f[b] = (separable_bxdf<B> ? m_refl[b] * m_cos : m_f[b]) * e;
+        } else {
+            for (std::size_t b = 0; b < Bins; ++b) {
+                const float fb = separable_bxdf<B> ? m_refl[b] * m_cos : m_f[b];
+                f[b] = fb * beer_lambert(sigma[b], d);
+            }
         }
         add_light(f, le, k);
     }
@@ -193,9 +198,17 @@ public:
         if (!m_on) return;
         const view sigma = m_t->absorption[m].at(m_bp, m_att_scratch);
         float mx = 0.0f;
-        for (std::size_t b = 0; b < Bins; ++b) {
-            m_tb[b] *= beer_lambert(sigma[b], t);
-            mx = m_tb[b] > mx ? m_tb[b] : mx;
+        if (m_t->grey_absorption[m]) {  // one exponential for every bin: the same numbers
+            const float e = beer_lambert(sigma[0], t);
+            for (std::size_t b = 0; b < Bins; ++b) {
+                m_tb[b] *= e;
+                mx = m_tb[b] > mx ? m_tb[b] : mx;
+            }
+        } else {
+            for (std::size_t b = 0; b < Bins; ++b) {
+                m_tb[b] *= beer_lambert(sigma[b], t);
+                mx = m_tb[b] > mx ? m_tb[b] : mx;
+            }
         }
         m_tb_max = mx;
     }
