@@ -219,6 +219,20 @@ TEST(Medium, BadInputAndUnsupportedEstimatorsAreErrors) {
     EXPECT_NE(message("", R"({"type": "dielectric", "ior": 1.5, "scattering": {"sigma_s": "lots"}})").find("scattering coefficient"),
               std::string::npos);
     EXPECT_EQ(message(R"({"absorption": 0.1, "scattering": {"sigma_s": 0.5, "g": -0.3}})", glass), "no error");
+    // a medium needs a closed solid around it (its boundary's crossings track it): a quad is none
+    for (const char* m : {R"("absorption": 0.3)", R"("scattering": {"sigma_s": 1})"}) {
+        const std::string open = R"({"camera": {"position": [0, 1, 5], "look_at": [0, 0, 0]},
+          "materials": {"smoke": {"type": "dielectric", "ior": 1.5, )" + std::string(m) + R"(}},
+          "shapes": [{"type": "quad", "size": [1, 1], "material": "smoke"}],
+          "environment": {"spd": "D65", "luminance": 1}})";
+        try {
+            (void)iris::scene::parse_scene(open, "open", ".");
+            ADD_FAILURE() << "a medium in a quad was accepted";
+        } catch (const std::exception& e) {
+            EXPECT_NE(std::string(e.what()).find("holds a medium"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("needs a closed solid around it"), std::string::npos) << e.what();
+        }
+    }
 
     const iris::scene_desc fog = fogged_room(grey_fog);
     EXPECT_TRUE(fog.features().scattering);

@@ -282,6 +282,19 @@ iris::scene_desc build_scene(const scene_document& doc) {
         }
         if (!(area > 0.0)) fail("the shape has no triangle of non-zero area");
         if (spec.emitter) emitter_area[*spec.emitter] += area;
+        // a medium is tracked by the crossings of its boundary (docs/method.md §10): it needs a
+        // closed solid around it, facing out, or the rays' media go wrong without a sign
+        if (spec.material < s.materials.size())
+            if (const auto* d = std::get_if<material::dielectric>(&s.materials[spec.material]); d && (d->absorption || d->scattering)) {
+                geometry::triangle_mesh g;
+                g.positions = mesh.positions;
+                g.triangles = mesh.triangles;
+                const auto c = geometry::check_mesh(g);
+                if (!c.ok())
+                    fail("its material '" + (spec.material < s.material_names.size() ? s.material_names[spec.material] : std::string("?")) +
+                         "' holds a medium (" + (d->absorption ? "absorption" : "scattering") +
+                         "), which needs a closed solid around it, facing out: " + (c.detail.empty() ? std::string("not a valid closed solid") : c.detail));
+            }
 
         s.shapes.push_back({spec.name, std::move(mesh), spec.material, spec.emitter});
     }
