@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include <iris/renderer/renderer.hpp>
@@ -93,14 +94,19 @@ inline std::vector<region_estimate> grid_estimates(const iris::scene_desc& scene
 }
 
 /// \brief Two independent estimates of the same regions compared: the largest |z| of the
-/// difference of their means, (a − b)/√(se_a² + se_b²), over every region and channel
-/// (a region without spread in either is skipped).
+/// difference of their means, (a − b)/√(se_a² + se_b²), over every region and channel. A
+/// region without spread in either counts only if its means differ; a non-finite mean or
+/// spread, a different region count, or means that differ without spread give +∞ (a failure).
 inline double max_abs_z(const std::vector<region_estimate>& a, const std::vector<region_estimate>& b) {
+    constexpr double fail = std::numeric_limits<double>::infinity();
+    if (a.size() != b.size()) return fail;
     double worst = 0.0;
-    for (std::size_t r = 0; r < a.size() && r < b.size(); ++r)
+    for (std::size_t r = 0; r < a.size(); ++r)
         for (std::size_t c = 0; c < 3; ++c) {
-            const double se = std::hypot(a[r].se[c], b[r].se[c]);
-            if (se > 0.0) worst = std::fmax(worst, std::fabs(a[r].mean[c] - b[r].mean[c]) / se);
+            const double se = std::hypot(a[r].se[c], b[r].se[c]), d = std::fabs(a[r].mean[c] - b[r].mean[c]);
+            if (!std::isfinite(se) || !std::isfinite(d)) return fail;
+            if (se > 0.0) worst = std::fmax(worst, d / se);
+            else if (d > 0.0) return fail;
         }
     return worst;
 }

@@ -684,8 +684,9 @@ TEST(PbrtImport, HomogeneousMediaFillTheSceneAndTheDielectricsThatBoundThem) {
         "MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\" \"spectrum sigma_s\" [ 400 3 700 1 ] \"spectrum sigma_a\" [ 400 0 700 0 ]\n"
         "Material \"dielectric\" \"float eta\" 1.4\n"
         "AttributeBegin\n MediumInterface \"smoke\" \"fog\"\n Shape \"sphere\"\nAttributeEnd\n"
-        "AttributeBegin\n Translate 3 0 0\n Shape \"sphere\"\nAttributeEnd\n"
+        "AttributeBegin\n MediumInterface \"fog\" \"fog\"\n Translate 3 0 0\n Shape \"sphere\"\nAttributeEnd\n"
         "AttributeBegin\n MediumInterface \"smoke\" \"fog\"\n Translate -3 0 0\n Shape \"sphere\"\nAttributeEnd\n"
+        "AttributeBegin\n Translate 0 3 0\n Shape \"sphere\"\nAttributeEnd\n"
         "Material \"diffuse\"\nShape \"sphere\" \"float radius\" 0.5\n";
     const auto s = import(fog + scene(world));
     ASSERT_TRUE(s.medium.has_value());
@@ -697,7 +698,7 @@ TEST(PbrtImport, HomogeneousMediaFillTheSceneAndTheDielectricsThatBoundThem) {
         EXPECT_NEAR(s.medium->scattering->sigma_s(l), 0.2, 1e-9) << l;
     }
     EXPECT_FLOAT_EQ(s.medium->scattering->g, 0.4f);
-    ASSERT_EQ(s.shapes.size(), 5u);
+    ASSERT_EQ(s.shapes.size(), 6u);
     const auto* smoke = std::get_if<iris::material::dielectric>(&s.materials[s.shapes[1].material]);
     ASSERT_NE(smoke, nullptr);
     EXPECT_FALSE(smoke->absorption.has_value());  // σ_a = 0 everywhere: no absorption
@@ -710,7 +711,21 @@ TEST(PbrtImport, HomogeneousMediaFillTheSceneAndTheDielectricsThatBoundThem) {
     ASSERT_TRUE(fogged->absorption.has_value() && fogged->scattering.has_value());
     EXPECT_NEAR((*fogged->absorption)(550.0), (*s.medium->absorption)(550.0), 1e-12);
     EXPECT_NEAR(fogged->scattering->sigma_s(550.0), 0.2, 1e-9);
-    EXPECT_TRUE(std::holds_alternative<iris::material::diffuse>(s.materials[s.shapes[4].material]));
+    // without a MediumInterface of its own a shape keeps the current one — here the camera's
+    // "" "fog", which pbrt-v4's WorldBegin does not reset: a boundary with nothing inside
+    const auto* clear = std::get_if<iris::material::dielectric>(&s.materials[s.shapes[4].material]);
+    ASSERT_NE(clear, nullptr);
+    EXPECT_FALSE(clear->absorption.has_value() || clear->scattering.has_value());
+    EXPECT_TRUE(std::holds_alternative<iris::material::diffuse>(s.materials[s.shapes[5].material]));
+    for (const auto& n : s.notes) EXPECT_EQ(n.find("of an opaque shape"), std::string::npos) << n;  // "" inside: nothing to say
+
+    // a glass that bounds no medium needs no closed solid (crossing it changes nothing); one
+    // that bounds a medium does
+    const std::string pane = "Material \"dielectric\"\nShape \"trianglemesh\" \"point3 P\" [ -1 0 -1  1 0 -1  1 0 1  -1 0 1 ] "
+                             "\"integer indices\" [ 0 2 1  0 3 2 ]\n";
+    EXPECT_NO_THROW((void)import(fog + scene("MediumInterface \"fog\" \"fog\"\n" + pane)));
+    EXPECT_THROW((void)import(fog + scene("MakeNamedMedium \"smoke\" \"string type\" \"homogeneous\"\nMediumInterface \"smoke\" \"fog\"\n" + pane)),
+                 iris::scene::error);
 
     // no camera medium: no scene medium; an opaque shape's inside medium is a note
     const std::string opaque = "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"\nMediumInterface \"m\" \"\"\nShape \"sphere\"\n";

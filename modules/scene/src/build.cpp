@@ -249,6 +249,24 @@ iris::image_texture read_texture(const scene_document& doc, const texture_spec& 
 
 }  // namespace
 
+namespace {
+
+bool same_table(const std::optional<tabulated_spectrum>& a, const std::optional<tabulated_spectrum>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    return !a || (std::ranges::equal(a->wavelengths(), b->wavelengths()) && std::ranges::equal(a->values(), b->values()) &&
+                  a->mode() == b->mode());
+}
+
+/// The dielectric's medium is the scene's own (the pbrt-v4 importer's glass that bounds no
+/// medium, docs/pbrt-import.md): crossing its boundary changes nothing.
+bool holds_the_scene_medium(const material::dielectric& d, const std::optional<medium_desc>& m) {
+    if (!m || !same_table(d.absorption, m->absorption) || d.scattering.has_value() != m->scattering.has_value()) return false;
+    return !d.scattering || (d.scattering->g == m->scattering->g &&
+                             same_table(d.scattering->sigma_s, m->scattering->sigma_s));
+}
+
+}  // namespace
+
 iris::scene_desc build_scene(const scene_document& doc) {
     iris::scene_desc s = doc.desc;
     s.shapes.clear();
@@ -285,7 +303,8 @@ iris::scene_desc build_scene(const scene_document& doc) {
         // a medium is tracked by the crossings of its boundary (docs/method.md §10): it needs a
         // closed solid around it, facing out, or the rays' media go wrong without a sign
         if (spec.material < s.materials.size())
-            if (const auto* d = std::get_if<material::dielectric>(&s.materials[spec.material]); d && (d->absorption || d->scattering)) {
+            if (const auto* d = std::get_if<material::dielectric>(&s.materials[spec.material]);
+                d && (d->absorption || d->scattering) && !holds_the_scene_medium(*d, s.medium)) {
                 geometry::triangle_mesh g;
                 g.positions = mesh.positions;
                 g.triangles = mesh.triangles;

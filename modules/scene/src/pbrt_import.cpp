@@ -680,7 +680,7 @@ private:
                 shape_spec s = it->second[i];
                 s.transform = glm::mat4(world(m_state.ctm) * glm::dmat4(s.transform));
                 s.name = n + "/" + s.name;
-                add_shape(std::move(s), media[i]);
+                add_shape(std::move(s), media[i], t.at);
             }
         } else if (d == "MakeNamedMedium") {
             named_medium(t);
@@ -793,7 +793,12 @@ private:
         double fov = m_fov;
         if (c.width < c.height) fov = std::atan(std::tan(fov * std::numbers::pi / 360.0) * c.height / c.width) * 360.0 / std::numbers::pi;
         c.fov_y_degrees = static_cast<float>(fov);
-        m_state = graphics_state{};
+        // pbrt-v4's WorldBegin resets the transform only: the media of a MediumInterface given
+        // before it (the camera's, typically) stay current for the world's shapes
+        graphics_state world_state;
+        world_state.inside_medium = m_state.inside_medium;
+        world_state.outside_medium = m_state.outside_medium;
+        m_state = world_state;
         m_stack.clear();
         (void)t;
     }
@@ -1650,7 +1655,7 @@ private:
             return;
         }
         s.transform = glm::mat4(world(m_state.ctm));
-        add_shape(std::move(s), {m_state.inside_medium, m_state.outside_medium, t.at});
+        add_shape(std::move(s), {m_state.inside_medium, m_state.outside_medium, t.at}, t.at);
     }
 
     /// The emitter of one shape under an AreaLightSource with "power" φ: pbrt-v4 gives each shape
@@ -1698,9 +1703,10 @@ private:
             default: return 0;
         }
     }
-    void add_shape(shape_spec s, shape_media media) {
+    /// `at`: the directive that adds it (a Shape, or the ObjectInstance of an object's shape).
+    void add_shape(shape_spec s, shape_media media, const location& at) {
         m_triangles += triangle_count(s);
-        if (m_triangles > max_triangles) fail(media.at, "the scene would have more than 2^28 triangles: refused");
+        if (m_triangles > max_triangles) fail(at, "the scene would have more than 2^28 triangles: refused");
         m_doc.shapes.push_back(std::move(s));
         m_shape_media.push_back(std::move(media));
     }
@@ -1757,8 +1763,8 @@ private:
 
     /// pbrt-v4's media onto iris's model (docs/method.md §10): one medium outside the solids —
     /// the camera's — and a dielectric's own medium inside it. A shape whose two sides name the
-    /// same medium is no boundary (pbrt-v4 keeps the ray's medium there), so a glass without a
-    /// MediumInterface of its own is filled with the camera's medium.
+    /// same medium is no boundary (pbrt-v4 keeps the ray's medium there), so such a glass is
+    /// filled with the camera's medium (`build_scene` then needs no closed solid around it).
     void resolve_media() {
         const medium_desc* outside = find_medium(m_camera_medium, m_camera_at, "the camera (its MediumInterface)");
         if (outside) m_doc.desc.medium = *outside;
@@ -1775,7 +1781,8 @@ private:
             shape_spec& s = m_doc.shapes[i];
             const bool glass = std::holds_alternative<material::dielectric>(m_doc.desc.materials[s.material]);
             if (!glass) {
-                if (boundary && opaque_noted.insert(sm.inside).second)
+                // an empty inside is pbrt-v4's usual "" "fog": nothing there to model
+                if (boundary && !sm.inside.empty() && opaque_noted.insert(sm.inside).second)
                     note(sm.at, "the inside medium '" + sm.inside + "' of an opaque shape is not modelled: iris's rays never pass an opaque "
                                 "surface (pbrt-v4 sends the rays leaving its back face into it)");
                 continue;
