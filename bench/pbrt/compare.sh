@@ -20,6 +20,7 @@
 # binary. Needs a release build of iris (README command 2).
 # Usage: PBRT=/path/to/pbrt bench/pbrt/compare.sh [OUT=build/results-pbrt-compare] [SCENE ...]
 set -euo pipefail
+trap 'echo "compare.sh: line $LINENO failed (exit $?): $BASH_COMMAND" >&2' ERR
 cd "$(dirname "$0")/../.."
 : "${PBRT:?set PBRT to the pbrt-v4 binary}"
 apps=$PWD/build/release/apps

@@ -16,6 +16,7 @@
 # Usage: PBRT=/path/to/pbrt bench/pbrt/import_check.sh [OUT=build/results-pbrt-import] [SPP=1024] [SCENE.pbrt ...]
 # (every scene of bench/pbrt/scenes/ without SCENE arguments)
 set -euo pipefail
+trap 'echo "import_check.sh: line $LINENO failed (exit $?): $BASH_COMMAND" >&2' ERR
 cd "$(dirname "$0")/../.."
 : "${PBRT:?set PBRT to the pbrt-v4 binary}"
 apps=$PWD/build/release/apps

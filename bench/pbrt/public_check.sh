@@ -17,6 +17,7 @@
 # give the machine to it alone for the times.
 # Usage: PBRT=/path/to/pbrt SCENES=/path/to/pbrt-v4-scenes bench/pbrt/public_check.sh [OUT] [SPP] [SCENE.pbrt ...]
 set -euo pipefail
+trap 'echo "public_check.sh: line $LINENO failed (exit $?): $BASH_COMMAND" >&2' ERR
 cd "$(dirname "$0")/../.."
 : "${PBRT:?set PBRT to the pbrt-v4 binary}"
 : "${SCENES:?set SCENES to a pbrt-v4-scenes checkout}"
